@@ -1,0 +1,168 @@
+// Second-order forward-mode automatic differentiation.
+//
+// A Jet<T, N> carries a value f, its gradient ∇f and its Hessian ∇²f with
+// respect to N independent variables, all exact in T (no finite differences).
+// Every elementary function u ↦ φ(u) propagates by the chain rule
+//   ∇φ(u) = φ'(u) ∇u,   ∇²φ(u) = φ'(u) ∇²u + φ''(u) ∇u ∇uᵀ.
+// Systems write their Lagrangian once, templated on the scalar S; core/
+// evaluates it with S = Jet<T, 2n> to get dL/dq, dL/dw and the blocks of the
+// Hessian, and discrete Lagrangians the same way in (q_b, q_e).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <type_traits>
+
+#include "core/scalar.hpp"
+
+namespace vivv {
+
+template <class T, int N>
+struct Jet {
+  T value = 0;
+  std::array<T, N> gradient{};
+  std::array<T, N * N> hessian{};  // row-major, symmetric
+
+  Jet() { clear_derivatives(); }
+  Jet(const T& constant) : value(constant) { clear_derivatives(); }  // NOLINT: constants promote
+  template <class I, std::enable_if_t<std::is_integral_v<I>, int> = 0>
+  Jet(I constant) : value(constant) {  // NOLINT
+    clear_derivatives();
+  }
+
+  // The independent variable number `index` at `at`.
+  static Jet variable(const T& at, int index) {
+    Jet x(at);
+    x.gradient[index] = 1;
+    return x;
+  }
+
+  const T& second(int i, int j) const { return hessian[i * N + j]; }
+
+  void clear_derivatives() {
+    gradient.fill(T(0));
+    hessian.fill(T(0));
+  }
+
+  // φ(u) from φ(u0), φ'(u0), φ''(u0): the chain rule above.
+  Jet chain(const T& f0, const T& f1, const T& f2) const {
+    Jet r(f0);
+    for (int i = 0; i < N; ++i) r.gradient[i] = f1 * gradient[i];
+    for (int i = 0; i < N; ++i)
+      for (int j = 0; j < N; ++j)
+        r.hessian[i * N + j] = f1 * hessian[i * N + j] + f2 * gradient[i] * gradient[j];
+    return r;
+  }
+
+  Jet& operator+=(const Jet& b) {
+    value += b.value;
+    for (int i = 0; i < N; ++i) gradient[i] += b.gradient[i];
+    for (int i = 0; i < N * N; ++i) hessian[i] += b.hessian[i];
+    return *this;
+  }
+  Jet& operator-=(const Jet& b) {
+    value -= b.value;
+    for (int i = 0; i < N; ++i) gradient[i] -= b.gradient[i];
+    for (int i = 0; i < N * N; ++i) hessian[i] -= b.hessian[i];
+    return *this;
+  }
+  // (ab)'' = a b'' + b a'' + a' b'ᵀ + b' a'ᵀ
+  Jet& operator*=(const Jet& b) {
+    Jet r(value * b.value);
+    for (int i = 0; i < N; ++i) r.gradient[i] = value * b.gradient[i] + b.value * gradient[i];
+    for (int i = 0; i < N; ++i)
+      for (int j = 0; j < N; ++j)
+        r.hessian[i * N + j] = value * b.hessian[i * N + j] + b.value * hessian[i * N + j] +
+                               gradient[i] * b.gradient[j] + b.gradient[i] * gradient[j];
+    return *this = r;
+  }
+  // a / b = a · (1/b), with (1/u)' = −1/u², (1/u)'' = 2/u³.
+  Jet& operator/=(const Jet& b) {
+    T inverse = 1 / b.value;
+    return *this *= b.chain(inverse, -inverse * inverse, 2 * inverse * inverse * inverse);
+  }
+  Jet& operator*=(const T& c) {
+    value *= c;
+    for (auto& g : gradient) g *= c;
+    for (auto& h : hessian) h *= c;
+    return *this;
+  }
+  Jet& operator/=(const T& c) { return *this *= T(1 / c); }
+  Jet operator-() const {
+    Jet r = *this;
+    r *= T(-1);
+    return r;
+  }
+};
+
+template <class T>
+struct is_jet : std::false_type {};
+template <class T, int N>
+struct is_jet<Jet<T, N>> : std::true_type {};
+
+// Binary operators between jets, and between a jet and anything that
+// converts to its scalar (T, int).
+#define VIVV_JET_BINARY(op)                                                       \
+  template <class T, int N>                                                       \
+  Jet<T, N> operator op(Jet<T, N> a, const Jet<T, N>& b) {                        \
+    return a op## = b;                                                            \
+  }                                                                               \
+  template <class T, int N, class U,                                              \
+            std::enable_if_t<std::is_convertible_v<U, T> && !is_jet<U>::value, int> = 0> \
+  Jet<T, N> operator op(Jet<T, N> a, const U& b) {                                \
+    return a op## = Jet<T, N>(T(b));                                              \
+  }                                                                               \
+  template <class T, int N, class U,                                              \
+            std::enable_if_t<std::is_convertible_v<U, T> && !is_jet<U>::value, int> = 0> \
+  Jet<T, N> operator op(const U& a, const Jet<T, N>& b) {                         \
+    Jet<T, N> r{T(a)};                                                            \
+    return r op## = b;                                                            \
+  }
+VIVV_JET_BINARY(+)
+VIVV_JET_BINARY(-)
+VIVV_JET_BINARY(*)
+VIVV_JET_BINARY(/)
+#undef VIVV_JET_BINARY
+
+// Elementary functions, each by its first and second derivative.
+template <class T, int N>
+Jet<T, N> sin(const Jet<T, N>& u) {
+  using std::cos, std::sin;
+  T s = sin(u.value), c = cos(u.value);
+  return u.chain(s, c, -s);
+}
+template <class T, int N>
+Jet<T, N> cos(const Jet<T, N>& u) {
+  using std::cos, std::sin;
+  T s = sin(u.value), c = cos(u.value);
+  return u.chain(c, -s, -c);
+}
+template <class T, int N>
+Jet<T, N> exp(const Jet<T, N>& u) {
+  using std::exp;
+  T e = exp(u.value);
+  return u.chain(e, e, e);
+}
+template <class T, int N>
+Jet<T, N> log(const Jet<T, N>& u) {
+  using std::log;
+  T inverse = 1 / u.value;
+  return u.chain(log(u.value), inverse, -inverse * inverse);
+}
+template <class T, int N>
+Jet<T, N> sqrt(const Jet<T, N>& u) {
+  using std::sqrt;
+  T s = sqrt(u.value);
+  return u.chain(s, 1 / (2 * s), -1 / (4 * s * s * s));
+}
+// u^p for a constant exponent p.
+template <class T, int N>
+Jet<T, N> pow(const Jet<T, N>& u, const T& p) {
+  using std::pow;
+  T f0 = pow(u.value, p);
+  T f1 = p * pow(u.value, p - 1);
+  T f2 = p * (p - 1) * pow(u.value, p - 2);
+  return u.chain(f0, f1, f2);
+}
+
+}  // namespace vivv

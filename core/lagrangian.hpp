@@ -1,0 +1,112 @@
+// The Lagrangian concept and what core/ derives from it (DESIGN §1.1).
+//
+// A system supplies L(q, w) once, templated on the scalar S, plus its
+// configuration dimension n. Everything else — momentum, Euler–Lagrange
+// acceleration, energy — comes from forward-mode automatic differentiation.
+#pragma once
+
+#include <array>
+#include <concepts>
+#include <stdexcept>
+#include <string>
+
+#include "core/jet.hpp"
+#include "core/scalar.hpp"
+
+namespace vivv {
+
+template <class S, int n>
+using Point = std::array<S, n>;
+
+// A Lagrangian system on Q = R^n with parameters in the scalar Scalar, whose
+// L can be evaluated in Scalar and in jets over it.
+template <class System>
+concept LagrangianSystem = requires(const System& system,
+                                    const Point<typename System::Scalar, System::dimension>& x,
+                                    const Point<Jet<typename System::Scalar, 2 * System::dimension>,
+                                                System::dimension>& jet_x) {
+  typename System::Scalar;
+  { System::dimension } -> std::convertible_to<int>;
+  { system.lagrangian(x, x) } -> std::convertible_to<typename System::Scalar>;
+  { system.lagrangian(jet_x, jet_x) };
+};
+
+// Thrown when d²L/dw² is singular at a state the computation visits.
+struct SingularLagrangianError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// L and its first and second derivatives at (q, w).
+template <class T, int n>
+struct LagrangianDerivatives {
+  T value;
+  Vector<T, n> dL_dq;
+  Vector<T, n> dL_dw;
+  Matrix<T, n, n> d2L_dw2;   // the mass matrix M
+  Matrix<T, n, n> d2L_dwdq;  // entry (i, j) = ∂²L / ∂w_i ∂q_j
+};
+
+// dL/dq, dL/dw, d²L/dw², d²L/dw dq at (q, w) by automatic differentiation.
+template <LagrangianSystem System>
+auto lagrangian_derivatives(const System& system,
+                            const Vector<typename System::Scalar, System::dimension>& q,
+                            const Vector<typename System::Scalar, System::dimension>& w) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  using J = Jet<T, 2 * n>;
+  Point<J, n> jet_q, jet_w;
+  for (int i = 0; i < n; ++i) {
+    jet_q[i] = J::variable(q[i], i);
+    jet_w[i] = J::variable(w[i], n + i);
+  }
+  J L = system.lagrangian(jet_q, jet_w);
+  LagrangianDerivatives<T, n> d;
+  d.value = L.value;
+  for (int i = 0; i < n; ++i) {
+    d.dL_dq[i] = L.gradient[i];
+    d.dL_dw[i] = L.gradient[n + i];
+    for (int j = 0; j < n; ++j) {
+      d.d2L_dw2(i, j) = L.second(n + i, n + j);
+      d.d2L_dwdq(i, j) = L.second(n + i, j);
+    }
+  }
+  return d;
+}
+
+// Momentum p = FL(q, w) = dL/dw.
+template <LagrangianSystem System>
+auto momentum(const System& system, const Vector<typename System::Scalar, System::dimension>& q,
+              const Vector<typename System::Scalar, System::dimension>& w) {
+  return lagrangian_derivatives(system, q, w).dL_dw;
+}
+
+// Energy E = dL/dw · w − L.
+template <LagrangianSystem System>
+auto energy(const System& system, const Vector<typename System::Scalar, System::dimension>& q,
+            const Vector<typename System::Scalar, System::dimension>& w) {
+  auto d = lagrangian_derivatives(system, q, w);
+  return typename System::Scalar(d.dL_dw.dot(w) - d.value);
+}
+
+// Euler–Lagrange acceleration q'' = M⁻¹ (dL/dq − (d²L/dw dq) w), DESIGN §1.1.
+// A singular (or numerically singular) mass matrix is an error naming the state.
+template <LagrangianSystem System>
+auto euler_lagrange_acceleration(const System& system,
+                                 const Vector<typename System::Scalar, System::dimension>& q,
+                                 const Vector<typename System::Scalar, System::dimension>& w) {
+  using T = typename System::Scalar;
+  using std::abs;
+  auto d = lagrangian_derivatives(system, q, w);
+  Eigen::FullPivLU<Matrix<T, System::dimension, System::dimension>> lu(d.d2L_dw2);
+  T scale = d.d2L_dw2.cwiseAbs().maxCoeff();
+  lu.setThreshold(1024 * epsilon<T>());
+  if (!(scale > 0) || !lu.isInvertible()) {
+    throw SingularLagrangianError("the Lagrangian is not regular: d2L/dw2 is singular at q = " +
+                                  to_decimal<T>(q[0]) + ", w = " + to_decimal<T>(w[0]) +
+                                  (System::dimension > 1 ? " (first components)" : ""));
+  }
+  Vector<T, System::dimension> rhs = d.dL_dq - d.d2L_dwdq * w;
+  return Vector<T, System::dimension>(lu.solve(rhs));
+}
+
+}  // namespace vivv

@@ -1,0 +1,163 @@
+// Scalar types, their Eigen traits, the MPFR precision guard and decimal I/O.
+//
+// vivv computes in double, long double, quad (boost::multiprecision::float128)
+// and MPFR at a precision chosen at run time. Everything in core/ and
+// references/ is templated on one of these; this file is the one place where
+// their traits live.
+#pragma once
+
+#include <boost/multiprecision/eigen.hpp>
+#include <boost/multiprecision/float128.hpp>
+#include <boost/multiprecision/mpfr.hpp>
+#include <Eigen/Dense>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+
+namespace vivv {
+
+using quad = boost::multiprecision::float128;
+// MPFR at the run-time default precision, without expression templates (so
+// that Eigen and our automatic differentiation see plain values).
+using mpfr_real = boost::multiprecision::number<boost::multiprecision::mpfr_float_backend<0>,
+                                                boost::multiprecision::et_off>;
+
+template <class T>
+inline constexpr bool is_mpfr_v = std::is_same_v<T, mpfr_real>;
+
+// Sets the MPFR working precision (decimal digits) for the scope and restores
+// the previous one on exit. Boost 1.74 keeps one process-wide default, so
+// computations at different precisions run in different processes.
+class PrecisionGuard {
+ public:
+  explicit PrecisionGuard(unsigned digits10) : previous_(mpfr_real::default_precision()) {
+    if (digits10 < 10) throw std::invalid_argument("MPFR precision below 10 decimal digits");
+    mpfr_real::default_precision(digits10);
+  }
+  ~PrecisionGuard() { mpfr_real::default_precision(previous_); }
+  PrecisionGuard(const PrecisionGuard&) = delete;
+  PrecisionGuard& operator=(const PrecisionGuard&) = delete;
+
+ private:
+  unsigned previous_;
+};
+
+// Bits of the significand of T at the current precision.
+template <class T>
+int precision_bits() {
+  if constexpr (is_mpfr_v<T>) {
+    return static_cast<int>(mpfr_get_prec(mpfr_real(0).backend().data()));
+  } else {
+    return std::numeric_limits<T>::digits;
+  }
+}
+
+// Unit roundoff scale: 2^(1 − bits), the machine epsilon of T now.
+template <class T>
+T epsilon() {
+  using std::ldexp;
+  return ldexp(T(1), 1 - precision_bits<T>());
+}
+
+// Name of the scalar type as written in reports.
+template <class T>
+std::string scalar_name() {
+  if constexpr (std::is_same_v<T, double>) return "double";
+  if constexpr (std::is_same_v<T, long double>) return "long double";
+  if constexpr (std::is_same_v<T, quad>) return "quad";
+  if constexpr (is_mpfr_v<T>) return "mpfr";
+}
+
+// Parses a decimal string exactly as T rounds it; never through a double.
+template <class T>
+T from_decimal(const std::string& text) {
+  if (text.empty()) throw std::invalid_argument("empty number");
+  std::size_t used = 0;
+  if constexpr (std::is_same_v<T, double>) {
+    T value = std::stod(text, &used);
+    if (used != text.size()) throw std::invalid_argument("not a number: '" + text + "'");
+    return value;
+  } else if constexpr (std::is_same_v<T, long double>) {
+    T value = std::stold(text, &used);
+    if (used != text.size()) throw std::invalid_argument("not a number: '" + text + "'");
+    return value;
+  } else {
+    // Boost accepts only a complete decimal number and throws otherwise.
+    try {
+      return T(text);
+    } catch (const std::exception&) {
+      throw std::invalid_argument("not a number: '" + text + "'");
+    }
+  }
+}
+
+// Decimal digits that round-trip T at the current precision.
+template <class T>
+int round_trip_digits() {
+  return static_cast<int>(std::ceil(precision_bits<T>() * 0.30102999566398120)) + 1;
+}
+
+// Writes x in scientific notation with every digit needed to read it back.
+template <class T>
+std::string to_decimal(const T& x) {
+  std::ostringstream out;
+  out.precision(round_trip_digits<T>());
+  out << std::scientific << x;
+  return out.str();
+}
+
+template <class T, int n>
+using Vector = Eigen::Matrix<T, n, 1>;
+template <class T, int rows, int cols>
+using Matrix = Eigen::Matrix<T, rows, cols>;
+
+// Max norm of a vector.
+template <class T, int n>
+T max_norm(const Vector<T, n>& v) {
+  using std::abs;
+  T result = 0;
+  for (int i = 0; i < v.size(); ++i) result = std::max<T>(result, abs(v[i]));
+  return result;
+}
+
+}  // namespace vivv
+
+// Boost 1.74's Eigen traits for multiprecision numbers lack digits(),
+// min_exponent(), max_exponent(), infinity() and quiet_NaN(), which Eigen 3.4
+// uses; these full specializations supply them for the two types we use.
+namespace Eigen {
+template <class Number>
+struct VivvMultiprecisionTraits {
+  using Real = Number;
+  using NonInteger = Number;
+  using Literal = Number;
+  using Nested = Number;
+  enum {
+    IsComplex = 0,
+    IsInteger = 0,
+    IsSigned = 1,
+    RequireInitialization = 1,
+    ReadCost = 1,
+    AddCost = 4,
+    MulCost = 8
+  };
+  static int digits() { return vivv::precision_bits<Number>(); }
+  static int digits10() { return static_cast<int>(digits() * 0.30102999566398120); }
+  static int max_digits10() { return vivv::round_trip_digits<Number>(); }
+  static int min_exponent() { return std::numeric_limits<Number>::min_exponent; }
+  static int max_exponent() { return std::numeric_limits<Number>::max_exponent; }
+  static Number infinity() { return std::numeric_limits<Number>::infinity(); }
+  static Number quiet_NaN() { return std::numeric_limits<Number>::quiet_NaN(); }
+  static Number epsilon() { return vivv::epsilon<Number>(); }
+  static Number dummy_precision() { return 1000 * epsilon(); }
+  static Number highest() { return (std::numeric_limits<Number>::max)(); }
+  static Number lowest() { return std::numeric_limits<Number>::lowest(); }
+};
+template <>
+struct NumTraits<vivv::mpfr_real> : VivvMultiprecisionTraits<vivv::mpfr_real> {};
+template <>
+struct NumTraits<vivv::quad> : VivvMultiprecisionTraits<vivv::quad> {};
+}  // namespace Eigen

@@ -1,0 +1,48 @@
+#include "core/scalar.hpp"
+
+#include <gtest/gtest.h>
+
+namespace vivv {
+namespace {
+
+TEST(Scalar, DecimalStringsRoundTripInMpfrWithoutPassingThroughDouble) {
+  PrecisionGuard guard(60);
+  mpfr_real third = from_decimal<mpfr_real>("0.333333333333333333333333333333333333333333333333333333333333");
+  mpfr_real back = from_decimal<mpfr_real>(to_decimal(third));
+  EXPECT_EQ(third, back);
+  // A double would keep only ~16 of these digits.
+  EXPECT_LT(abs(third - mpfr_real(1) / 3), mpfr_real("1e-59"));
+}
+
+TEST(Scalar, PrecisionGuardRestoresThePreviousPrecision) {
+  unsigned before = mpfr_real::default_precision();
+  {
+    PrecisionGuard guard(100);
+    EXPECT_GE(precision_bits<mpfr_real>(), 332);
+  }
+  EXPECT_EQ(mpfr_real::default_precision(), before);
+}
+
+TEST(Scalar, MalformedDecimalIsRejected) {
+  EXPECT_THROW(from_decimal<double>("1.5x"), std::invalid_argument);
+  EXPECT_THROW(from_decimal<quad>("abc"), std::invalid_argument);
+  PrecisionGuard guard(30);
+  EXPECT_THROW(from_decimal<mpfr_real>("1..2"), std::invalid_argument);
+}
+
+TEST(Scalar, EigenSolvesInQuadAndMpfr) {
+  PrecisionGuard guard(50);
+  Matrix<mpfr_real, 2, 2> a;
+  a << 2, 1, 1, 3;
+  Vector<mpfr_real, 2> b(mpfr_real(1), mpfr_real(2));
+  Vector<mpfr_real, 2> x = a.partialPivLu().solve(b);
+  EXPECT_LT((max_norm<mpfr_real, 2>(a * x - b)), mpfr_real("1e-48"));
+  Matrix<quad, 2, 2> aq;
+  aq << 2, 1, 1, 3;
+  Vector<quad, 2> bq(quad(1), quad(2));
+  Vector<quad, 2> xq = aq.partialPivLu().solve(bq);
+  EXPECT_LT((max_norm<quad, 2>(aq * xq - bq)), quad(1e-32));
+}
+
+}  // namespace
+}  // namespace vivv
