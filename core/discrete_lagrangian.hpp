@@ -1,0 +1,174 @@
+// Q×Q discrete Lagrangians L_d(q_b, q_e; h) and their Legendre transforms (DESIGN §1.2).
+//
+// Arguments are named (begin, end); the paper writes L_h(q+, q−) with the
+// later point first. Δ = q_e − q_b. The whole contract of a discrete
+// Lagrangian is L_d, p_begin = −∂L_d/∂q_b and p_end = +∂L_d/∂q_e; the last two
+// (and the Jacobians the DEL solver needs) come from automatic differentiation.
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/jet.hpp"
+#include "core/lagrangian.hpp"
+
+namespace vivv {
+
+enum class QxQRule {
+  left_rectangle,   // h·L(q_b, Δ/h)                       (paper §2, eq. 2.2 with a = 0)
+  right_rectangle,  // h·L(q_e, Δ/h)
+  midpoint,         // h·L((q_b + q_e)/2, Δ/h)
+  trapezoid,        // h/2·[L(q_b, Δ/h) + L(q_e, Δ/h)]
+  alpha,            // h·L((1 − α) q_b + α q_e, Δ/h)
+  weighted,         // h·[(1 − β) L(q_b, Δ/h) + β L(q_e, Δ/h)]  (β = 1/2 is the trapezoid)
+};
+
+// Rule names as written in case files and reports, in the order of QxQRule.
+inline const std::vector<std::string>& rule_names() {
+  static const std::vector<std::string> names = {"left-rectangle", "right-rectangle", "midpoint",
+                                                 "trapezoid",      "alpha",           "weighted"};
+  return names;
+}
+inline std::string rule_name(QxQRule rule) { return rule_names()[static_cast<int>(rule)]; }
+// Inverse of rule_name; std::nullopt for an unknown name.
+inline std::optional<QxQRule> rule_from_name(const std::string& name) {
+  const auto& names = rule_names();
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return static_cast<QxQRule>(i);
+  return std::nullopt;
+}
+
+// The twin term + a·h^s·(q_e − q_b) of paper §2.2 (a ∈ R^n, s >= 1).
+template <class T>
+struct TwinTerm {
+  std::vector<T> a;
+  int power = 1;
+};
+
+// One Q×Q discrete Lagrangian: a rule, its parameter (α or β) and an optional twin term.
+template <class T>
+struct QxQDiscretization {
+  QxQRule rule = QxQRule::midpoint;
+  T parameter = T(1) / 2;  // α for `alpha`, β for `weighted`
+  std::optional<TwinTerm<T>> twin;
+
+  // Nominal order r of L_d: 2 for the symmetric rules, 1 otherwise (MW Def. 2.3.1).
+  int nominal_order() const {
+    switch (rule) {
+      case QxQRule::midpoint:
+      case QxQRule::trapezoid:
+        return 2;
+      case QxQRule::alpha:
+      case QxQRule::weighted:
+        return parameter == T(1) / 2 ? 2 : 1;
+      default:
+        return 1;
+    }
+  }
+};
+
+// L_d(q_b, q_e; h) evaluated in S (T or a jet over T).
+template <LagrangianSystem System, class S>
+S discrete_lagrangian(const System& system,
+                      const QxQDiscretization<typename System::Scalar>& discretization,
+                      const Point<S, System::dimension>& q_b, const Point<S, System::dimension>& q_e,
+                      const typename System::Scalar& h) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  Point<S, n> velocity, q_mid;
+  for (int i = 0; i < n; ++i) velocity[i] = (q_e[i] - q_b[i]) / h;
+  const T& c = discretization.parameter;
+  auto on_segment = [&](const T& fraction) {
+    for (int i = 0; i < n; ++i) q_mid[i] = (1 - fraction) * q_b[i] + fraction * q_e[i];
+    return system.lagrangian(q_mid, velocity);
+  };
+  S value;
+  switch (discretization.rule) {
+    case QxQRule::left_rectangle:
+      value = h * system.lagrangian(q_b, velocity);
+      break;
+    case QxQRule::right_rectangle:
+      value = h * system.lagrangian(q_e, velocity);
+      break;
+    case QxQRule::midpoint:
+      value = h * on_segment(T(1) / 2);
+      break;
+    case QxQRule::alpha:
+      value = h * on_segment(c);
+      break;
+    case QxQRule::trapezoid:
+      value = h / 2 * (system.lagrangian(q_b, velocity) + system.lagrangian(q_e, velocity));
+      break;
+    case QxQRule::weighted:
+      value = h * ((1 - c) * system.lagrangian(q_b, velocity) + c * system.lagrangian(q_e, velocity));
+      break;
+  }
+  if (discretization.twin) {
+    using std::pow;
+    T scale = pow(h, discretization.twin->power);
+    for (int i = 0; i < n; ++i) value += scale * discretization.twin->a[i] * (q_e[i] - q_b[i]);
+  }
+  return value;
+}
+
+// L_d and its derivatives at (q_b, q_e): p_begin = −∂L_d/∂q_b, p_end = +∂L_d/∂q_e,
+// and the second-derivative blocks ∂p_begin/∂q_e = −∂²L_d/∂q_b∂q_e,
+// ∂p_end/∂q_b = ∂²L_d/∂q_e∂q_b, ∂p_end/∂q_e = ∂²L_d/∂q_e².
+template <class T, int n>
+struct DiscreteLegendre {
+  T value;
+  Vector<T, n> p_begin, p_end;
+  Matrix<T, n, n> dp_begin_dq_b, dp_begin_dq_e, dp_end_dq_b, dp_end_dq_e;
+};
+
+template <LagrangianSystem System>
+auto discrete_legendre(const System& system,
+                       const QxQDiscretization<typename System::Scalar>& discretization,
+                       const Vector<typename System::Scalar, System::dimension>& q_b,
+                       const Vector<typename System::Scalar, System::dimension>& q_e,
+                       const typename System::Scalar& h) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  using J = Jet<T, 2 * n>;
+  Point<J, n> jet_b, jet_e;
+  for (int i = 0; i < n; ++i) {
+    jet_b[i] = J::variable(q_b[i], i);
+    jet_e[i] = J::variable(q_e[i], n + i);
+  }
+  J L = discrete_lagrangian(system, discretization, jet_b, jet_e, h);
+  DiscreteLegendre<T, n> d;
+  d.value = L.value;
+  for (int i = 0; i < n; ++i) {
+    d.p_begin[i] = -L.gradient[i];
+    d.p_end[i] = L.gradient[n + i];
+    for (int j = 0; j < n; ++j) {
+      d.dp_begin_dq_b(i, j) = -L.second(i, j);
+      d.dp_begin_dq_e(i, j) = -L.second(i, n + j);
+      d.dp_end_dq_b(i, j) = L.second(n + i, j);
+      d.dp_end_dq_e(i, j) = L.second(n + i, n + j);
+    }
+  }
+  return d;
+}
+
+// p_begin(q_b, q_e) = −∂L_d/∂q_b (paper: F−L_h).
+template <LagrangianSystem System>
+auto p_begin(const System& system, const QxQDiscretization<typename System::Scalar>& discretization,
+             const Vector<typename System::Scalar, System::dimension>& q_b,
+             const Vector<typename System::Scalar, System::dimension>& q_e,
+             const typename System::Scalar& h) {
+  return discrete_legendre(system, discretization, q_b, q_e, h).p_begin;
+}
+
+// p_end(q_b, q_e) = +∂L_d/∂q_e (paper: F+L_h).
+template <LagrangianSystem System>
+auto p_end(const System& system, const QxQDiscretization<typename System::Scalar>& discretization,
+           const Vector<typename System::Scalar, System::dimension>& q_b,
+           const Vector<typename System::Scalar, System::dimension>& q_e,
+           const typename System::Scalar& h) {
+  return discrete_legendre(system, discretization, q_b, q_e, h).p_end;
+}
+
+}  // namespace vivv

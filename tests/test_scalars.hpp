@@ -1,0 +1,35 @@
+// Scalar types the important paths are tested in, and a fixture that sets the
+// MPFR working precision for each test.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <random>
+
+#include "core/scalar.hpp"
+
+namespace vivv::testing {
+
+using Scalars = ::testing::Types<double, quad, mpfr_real>;
+
+// MPFR tests run at 60 decimal digits (~200 bits) unless a test says otherwise.
+template <class T>
+class ScalarTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if constexpr (is_mpfr_v<T>) guard_ = std::make_unique<PrecisionGuard>(60);
+  }
+  // A few hundred ulps: what "to working precision" means in these tests.
+  static T working_tolerance() { return T(512) * epsilon<T>(); }
+  // Uniform in [low, high], exactly representable in every scalar type.
+  static T uniform(std::mt19937& random, int low, int high) {
+    std::uniform_int_distribution<int> numerator(low * 1024, high * 1024);
+    return T(numerator(random)) / 1024;
+  }
+
+ private:
+  std::unique_ptr<PrecisionGuard> guard_;
+};
+
+}  // namespace vivv::testing
