@@ -1,0 +1,166 @@
+// Observed order of convergence (DESIGN §1.6).
+//
+// A sweep gives step sizes h_i and errors e_i. The observed order is the
+// least-squares slope of log e against log h over the asymptotic range only:
+// points at the round-off / reference-tolerance floor and large-h points that
+// are not yet asymptotic are left out, and every point left out says why.
+//
+// The pieces compose: the logarithms are taken in the sweep's scalar T (errors
+// may be far below the range of a double), everything after that is
+// statistics in long double — pairwise orders, medians, the plateau and
+// pre-asymptotic rules, the least-squares line and its Student-t interval.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/scalar.hpp"
+
+namespace vivv {
+
+// How the asymptotic range is chosen and the interval reported.
+struct FitOptions {
+  // Pre-asymptotic: the leading point goes while |p_first − median p_rest| > asymptotic_tolerance.
+  double asymptotic_tolerance = 0.25;
+  // The plateau and pre-asymptotic rules never leave fewer points than this.
+  int minimum_points = 3;
+  // Plateau: the trailing point goes while p_last < plateau_fraction · median p_rest ...
+  double plateau_fraction = 0.25;
+  // ... the rest clearly converges, median p_rest >= plateau_minimum_order ...
+  double plateau_minimum_order = 0.5;
+  // ... and e_last <= plateau_floor_factor · floor. A plateau far above the stated floor is a
+  // failure to converge (an inconsistent scheme), not round-off: it stays in the fit, with a note.
+  double plateau_floor_factor = 1e6;
+  // Two-sided confidence level of [confidence_low, confidence_high].
+  double confidence = 0.95;
+};
+
+// A point left out of the fit: its index into the caller's arrays and why.
+using DroppedPoint = std::pair<int, std::string>;
+
+// The observed order of a sweep, with the evidence for it.
+struct OrderFit {
+  bool ok = false;               // false if fewer than 2 usable points (then `reason` explains)
+  std::string reason;            // empty when ok
+  double order = NAN;            // least-squares slope of log e against log h over the used points
+  double standard_error = NAN;   // of the slope; NaN with exactly 2 points
+  double confidence_low = NAN;   // order ∓ t·standard_error (Student's t, n − 2 degrees of
+  double confidence_high = NAN;  // freedom); ∓inf with exactly 2 points
+  double confidence = NAN;       // the level of that interval (FitOptions::confidence)
+  double log_constant = NAN;     // intercept: e ≈ C h^order, log C
+  std::vector<int> sorted;       // every index, by decreasing h (ties in the caller's order)
+  std::vector<double> pairwise_orders;  // between sorted[k] and sorted[k+1]; NaN where undefined
+  std::vector<int> used;                // indices used in the fit, ascending
+  std::vector<DroppedPoint> dropped;    // indices left out and why, ascending by index
+  std::vector<std::string> notes;       // what the reader should know but no rule acted on
+};
+
+// The comparison of an observed order with a prediction.
+struct OrderVerdict {
+  bool holds = false;
+  std::string explanation;
+};
+
+// One point of a sweep in logarithms, as the statistics see it.
+struct LogPoint {
+  int index = 0;              // into the caller's arrays
+  long double log_h = 0;      // log h (NaN or −inf when h <= 0)
+  long double log_error = 0;  // log e (−inf when e = 0)
+  std::string masked;         // why the point is out before any fit; empty if usable
+  bool near_floor = false;    // e <= plateau_floor_factor · floor
+};
+
+// Least-squares line y ≈ intercept + slope·x.
+struct LeastSquaresLine {
+  long double slope = NAN;
+  long double intercept = NAN;
+  long double standard_error = NAN;  // NaN when there are only 2 points
+  int points = 0;
+};
+
+// slope = Σ(x − x̄)(y − ȳ) / Σ(x − x̄)², intercept = ȳ − slope·x̄,
+// standard_error = sqrt(Σ r² / ((n − 2) Σ(x − x̄)²)); needs n >= 2 and distinct x.
+LeastSquaresLine least_squares_line(const std::vector<long double>& x,
+                                    const std::vector<long double>& y);
+
+// p_k = (y_k − y_{k+1}) / (x_k − x_{k+1}) for consecutive points; NaN where undefined.
+std::vector<double> pairwise_slopes(const std::vector<long double>& x,
+                                    const std::vector<long double>& y);
+
+// The median of the finite values (NaN if there are none).
+double median_of_finite(std::vector<double> values);
+
+// t with P(|t_ν| <= t) = confidence for Student's t distribution with ν degrees of freedom.
+double students_t_two_sided(double confidence, int degrees_of_freedom);
+
+// Drops trailing points of `kept` (decreasing h) while p_last < plateau_fraction · median p_rest
+// with median p_rest >= plateau_minimum_order, as "at the floor (plateau ...)".
+void drop_plateau(std::vector<LogPoint>& kept, std::vector<DroppedPoint>& dropped,
+                  std::vector<std::string>& notes, const FitOptions& options);
+
+// Drops leading points of `kept` (decreasing h) while |p_first − median p_rest| >
+// asymptotic_tolerance, as "pre-asymptotic (...)".
+void drop_pre_asymptotic(std::vector<LogPoint>& kept, std::vector<DroppedPoint>& dropped,
+                         const FitOptions& options);
+
+// log e ≈ log C + order · log h by least squares over the points that survive the mask, the
+// plateau rule and the pre-asymptotic rule, in that order.
+OrderFit fit_order_in_logs(std::vector<LogPoint> points, const FitOptions& options = {});
+
+// holds ⇔ fit.ok and order >= predicted − tolerance, or |order − predicted| <= tolerance if exact.
+OrderVerdict judge_order(const OrderFit& fit, double predicted, bool exact, double tolerance);
+
+// x written with `digits` significant digits, as a stream writes T ("1.2e-61", "0.5").
+template <class T>
+std::string format_scalar(const T& x, int digits = 2) {
+  std::ostringstream out;
+  out << std::setprecision(digits) << x;
+  return out.str();
+}
+
+// Why (h, e) is out before any fit, against `floor`: "zero error", "at the floor (error e <=
+// floor f)", a non-positive step or a non-finite error; empty when the point is usable.
+template <class T>
+std::string mask_reason(const T& h, const T& error, const T& floor) {
+  using std::isfinite;
+  if (!(h > 0) || !isfinite(h))
+    return "step not positive and finite (h = " + format_scalar(h) + ")";
+  if (!isfinite(error) || error < 0)
+    return "error not finite and >= 0 (" + format_scalar(error) + ")";
+  if (error == 0) return "zero error";
+  if (error <= floor) {
+    return "at the floor (error " + format_scalar(error) + " <= floor " + format_scalar(floor) +
+           ")";
+  }
+  return "";
+}
+
+// The observed order of the sweep (h_i, e_i): logarithms in T, then fit_order_in_logs.
+template <class T>
+OrderFit fit_order(const std::vector<T>& h, const std::vector<T>& error, const T& floor,
+                   const FitOptions& options = {}) {
+  using std::log;
+  if (h.size() != error.size()) {
+    throw std::invalid_argument("fit_order: " + std::to_string(h.size()) + " step sizes but " +
+                                std::to_string(error.size()) + " errors");
+  }
+  const T plateau_reach = T(options.plateau_floor_factor) * floor;
+  std::vector<LogPoint> points(h.size());
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    LogPoint& point = points[i];
+    point.index = static_cast<int>(i);
+    point.masked = mask_reason(h[i], error[i], floor);
+    point.log_h = h[i] > 0 ? static_cast<long double>(log(h[i])) : -INFINITY;
+    point.log_error = error[i] > 0 ? static_cast<long double>(log(error[i])) : -INFINITY;
+    point.near_floor = error[i] <= plateau_reach;
+  }
+  return fit_order_in_logs(std::move(points), options);
+}
+
+}  // namespace vivv
