@@ -84,7 +84,7 @@ S discrete_lagrangian(const System& system,
     for (int i = 0; i < n; ++i) q_mid[i] = (1 - fraction) * q_b[i] + fraction * q_e[i];
     return system.lagrangian(q_mid, velocity);
   };
-  S value;
+  S value = S(0);
   switch (discretization.rule) {
     case QxQRule::left_rectangle:
       value = h * system.lagrangian(q_b, velocity);

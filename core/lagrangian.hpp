@@ -96,7 +96,12 @@ auto euler_lagrange_acceleration(const System& system,
                                  const Vector<typename System::Scalar, System::dimension>& w) {
   using T = typename System::Scalar;
   using std::abs;
+  using std::isfinite;
   auto d = lagrangian_derivatives(system, q, w);
+  if (!isfinite(d.value))
+    throw SingularLagrangianError("L(q, w) is not finite at q = " + to_decimal<T>(q[0]) +
+                                  ", w = " + to_decimal<T>(w[0]) +
+                                  ": the state is outside the Lagrangian's domain");
   Eigen::FullPivLU<Matrix<T, System::dimension, System::dimension>> lu(d.d2L_dw2);
   T scale = d.d2L_dw2.cwiseAbs().maxCoeff();
   lu.setThreshold(1024 * epsilon<T>());

@@ -1,0 +1,236 @@
+#include "cases/case_file.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "cases/catalogue.hpp"
+#include "core/discrete_lagrangian.hpp"
+
+namespace vivv {
+
+CaseError::CaseError(const std::string& file, const std::string& field, const std::string& message)
+    : std::runtime_error(file + ": " + (field.empty() ? "" : "field '" + field + "': ") + message),
+      file(file),
+      field(field) {}
+
+std::vector<std::string> system_names() {
+  std::vector<std::string> names;
+  for (const auto& info : system_catalogue()) names.push_back(info.name);
+  return names;
+}
+
+std::vector<std::string> claim_names() { return claim_ids(); }
+
+namespace {
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
+  return out;
+}
+
+// Field-by-field reader for one JSON object: it knows the file and the path
+// of the object, and at the end rejects any field it was not asked about.
+class Reader {
+ public:
+  Reader(const nlohmann::json& json, std::string file, std::string path)
+      : json_(json), file_(std::move(file)), path_(std::move(path)) {
+    if (!json_.is_object()) fail("", "expected a JSON object");
+  }
+
+  [[noreturn]] void fail(const std::string& key, const std::string& message) const {
+    throw CaseError(file_, field(key), message);
+  }
+  std::string field(const std::string& key) const {
+    if (key.empty()) return path_;
+    return path_.empty() ? key : path_ + "." + key;
+  }
+  bool has(const std::string& key) {
+    known_.insert(key);
+    return json_.contains(key);
+  }
+  const nlohmann::json& get(const std::string& key) {
+    if (!has(key)) fail(key, "missing");
+    return json_.at(key);
+  }
+  Reader object(const std::string& key) { return Reader(get(key), file_, field(key)); }
+
+  // A number written as a decimal string, e.g. "1.1" or "-2.5e-3".
+  std::string decimal(const std::string& key) { return decimal_value(get(key), field(key)); }
+  std::string decimal_value(const nlohmann::json& value, const std::string& where) const {
+    static const std::regex pattern(R"([+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?)");
+    if (!value.is_string())
+      throw CaseError(file_, where, "expected a decimal string such as \"1.5\", got " + value.dump());
+    std::string text = value.get<std::string>();
+    if (!std::regex_match(text, pattern))
+      throw CaseError(file_, where, "expected a decimal number, got \"" + text + "\"");
+    return text;
+  }
+  std::vector<std::string> decimals(const std::string& key, std::size_t size) {
+    const auto& value = get(key);
+    if (!value.is_array() || value.size() != size)
+      fail(key, "expected an array of " + std::to_string(size) + " decimal strings, got " +
+                    value.dump());
+    std::vector<std::string> out;
+    for (std::size_t i = 0; i < size; ++i)
+      out.push_back(decimal_value(value[i], field(key) + "[" + std::to_string(i) + "]"));
+    return out;
+  }
+  int integer(const std::string& key, int low, int high) {
+    const auto& value = get(key);
+    if (!value.is_number_integer() || value.get<long long>() < low || value.get<long long>() > high)
+      fail(key, "expected an integer in [" + std::to_string(low) + ", " + std::to_string(high) +
+                    "], got " + value.dump());
+    return value.get<int>();
+  }
+  std::string string(const std::string& key) {
+    const auto& value = get(key);
+    if (!value.is_string()) fail(key, "expected a string, got " + value.dump());
+    return value.get<std::string>();
+  }
+  std::string one_of(const std::string& key, const std::vector<std::string>& choices) {
+    std::string value = string(key);
+    if (std::find(choices.begin(), choices.end(), value) == choices.end())
+      fail(key, "unknown name '" + value + "'; expected one of: " + join(choices));
+    return value;
+  }
+  std::vector<std::string> strings(const std::string& key) {
+    const auto& value = get(key);
+    if (!value.is_array()) fail(key, "expected an array of strings, got " + value.dump());
+    std::vector<std::string> out;
+    for (const auto& item : value) {
+      if (!item.is_string()) fail(key, "expected an array of strings, got " + value.dump());
+      out.push_back(item.get<std::string>());
+    }
+    return out;
+  }
+  // Every field present must have been read.
+  void finish() const {
+    for (const auto& [key, value] : json_.items())
+      if (!known_.count(key)) fail(key, "unknown field");
+  }
+  const std::string& file() const { return file_; }
+
+ private:
+  const nlohmann::json& json_;
+  std::string file_, path_;
+  std::set<std::string> known_;
+};
+
+DiscretizationSpec read_discretization(Reader reader, int dimension) {
+  DiscretizationSpec spec;
+  spec.kind = reader.one_of("kind", rule_names());
+  QxQRule rule = *rule_from_name(spec.kind);
+  if (rule == QxQRule::alpha) spec.parameter = reader.decimal("alpha");
+  if (rule == QxQRule::weighted) spec.parameter = reader.decimal("beta");
+  if (reader.has("twin")) {
+    Reader twin = reader.object("twin");
+    spec.twin = TwinSpec{twin.decimals("a", dimension), twin.integer("power", 1, 16)};
+    twin.finish();
+  }
+  reader.finish();
+  return spec;
+}
+
+}  // namespace
+
+CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
+  Reader reader(json, file, "");
+  CaseSpec spec;
+  spec.file = file;
+  spec.source = json;
+  spec.name = reader.string("name");
+  if (spec.name.empty() || spec.name.find_first_of("/\\ ") != std::string::npos)
+    reader.fail("name", "expected a non-empty name without spaces or slashes");
+
+  Reader system = reader.object("system");
+  spec.system = system.one_of("name", system_names());
+  SystemInfo info;
+  for (const auto& candidate : system_catalogue())
+    if (candidate.name == spec.system) info = candidate;
+  std::map<std::string, std::string> given;
+  if (system.has("params")) {
+    Reader params = system.object("params");
+    for (const auto& parameter : info.parameters)
+      if (params.has(parameter.name)) given[parameter.name] = params.decimal(parameter.name);
+    params.finish();
+  }
+  for (const auto& parameter : info.parameters)
+    spec.parameters.emplace_back(parameter.name, given.count(parameter.name)
+                                                     ? given[parameter.name]
+                                                     : parameter.default_value);
+  system.finish();
+
+  Reader initial = reader.object("initial");
+  spec.q = initial.decimals("q", info.dimension);
+  spec.w = initial.decimals("w", info.dimension);
+  initial.finish();
+
+  spec.final_time = reader.decimal("T");
+  if (spec.final_time.front() == '-' || std::stold(spec.final_time) <= 0)
+    reader.fail("T", "expected a positive time, got \"" + spec.final_time + "\"");
+
+  const auto& steps = reader.get("steps");
+  if (!steps.is_array() || steps.size() < 3)
+    reader.fail("steps", "expected an array of at least 3 step counts N (h = T/N), got " +
+                             steps.dump());
+  for (const auto& n : steps) {
+    if (!n.is_number_integer() || n.get<long long>() < 2 || n.get<long long>() > 1000000)
+      reader.fail("steps", "expected integers N in [2, 1000000], got " + n.dump());
+    if (!spec.steps.empty() && n.get<int>() <= spec.steps.back())
+      reader.fail("steps", "expected strictly increasing step counts, got " + steps.dump());
+    spec.steps.push_back(n.get<int>());
+  }
+
+  if (reader.has("digits")) spec.digits = reader.integer("digits", 20, 2000);
+  spec.discretization = read_discretization(reader.object("discretization"), info.dimension);
+  if (reader.has("past_discretization"))
+    spec.past_discretization =
+        read_discretization(reader.object("past_discretization"), info.dimension);
+  if (reader.has("start")) spec.start = reader.one_of("start", {"reference", "momentum"});
+  if (reader.has("order_tolerance")) {
+    spec.order_tolerance = reader.decimal("order_tolerance");
+    if (std::stold(spec.order_tolerance) <= 0 || std::stold(spec.order_tolerance) >= 1)
+      reader.fail("order_tolerance", "expected a tolerance in (0, 1), got \"" +
+                                         spec.order_tolerance + "\"");
+  }
+  if (reader.has("labels")) spec.labels = reader.strings("labels");
+
+  spec.claims = reader.strings("claims");
+  if (spec.claims.empty()) reader.fail("claims", "expected at least one claim");
+  for (std::size_t i = 0; i < spec.claims.size(); ++i) {
+    const auto& id = spec.claims[i];
+    std::string where = "claims[" + std::to_string(i) + "]";
+    if (std::find(claim_ids().begin(), claim_ids().end(), id) == claim_ids().end())
+      throw CaseError(file, where, "unknown claim '" + id + "'; expected one of: " + join(claim_ids()));
+    if (id == "twin-term-invariance" && !spec.discretization.twin)
+      throw CaseError(file, where, "twin-term-invariance needs discretization.twin");
+    if (id == "mismatched-legendre" && !spec.past_discretization)
+      throw CaseError(file, where, "mismatched-legendre needs past_discretization");
+  }
+  if (reader.has("expect")) {
+    Reader expect = reader.object("expect");
+    for (const auto& id : spec.claims)
+      if (expect.has(id)) spec.expect[id] = expect.integer(id, 0, 64);
+    expect.finish();  // an expectation for a claim the case does not check is an error
+  }
+  reader.finish();
+  return spec;
+}
+
+CaseSpec read_case_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw CaseError(path, "", "cannot open the case file");
+  nlohmann::json json;
+  try {
+    json = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& error) {
+    throw CaseError(path, "", std::string("not valid JSON: ") + error.what());
+  }
+  return parse_case(json, path);
+}
+
+}  // namespace vivv

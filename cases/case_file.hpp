@@ -1,0 +1,63 @@
+// Case files: a system, an initial state, a step sweep, a discretization and
+// the claims to check (foundation issue, "Case files").
+//
+// Reading a case validates every field against the catalogue; anything
+// unknown or malformed is a CaseError naming the file, the field and what
+// was expected. Numbers stay decimal strings here: they are parsed in the
+// working precision only when the case runs.
+#pragma once
+
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace vivv {
+
+struct CaseError : std::runtime_error {
+  CaseError(const std::string& file, const std::string& field, const std::string& message);
+  std::string file, field;
+};
+
+struct TwinSpec {
+  std::vector<std::string> a;
+  int power = 1;
+};
+
+struct DiscretizationSpec {
+  std::string kind;                      // a Q×Q rule name (core/discrete_lagrangian.hpp)
+  std::optional<std::string> parameter;  // "alpha" or "beta", for the rules that take one
+  std::optional<TwinSpec> twin;
+};
+
+struct CaseSpec {
+  std::string file;
+  nlohmann::json source;  // the case file as read, for the report
+  std::string name;
+  std::string system;
+  std::vector<std::pair<std::string, std::string>> parameters;  // every parameter, defaults filled in
+  std::vector<std::string> q, w;
+  std::string final_time;  // "T"
+  std::vector<int> steps;
+  int digits = 60;
+  DiscretizationSpec discretization;
+  std::optional<DiscretizationSpec> past_discretization;
+  std::string start = "reference";  // or "momentum"
+  std::vector<std::string> claims;
+  std::map<std::string, int> expect;     // exact orders a case declares
+  std::string order_tolerance = "0.2";   // |observed − predicted| allowed
+  std::vector<std::string> labels;       // e.g. "paper"
+};
+
+// Reads and validates a case file; throws CaseError.
+CaseSpec read_case_file(const std::string& path);
+// Validates an already-parsed case; `file` names it in errors.
+CaseSpec parse_case(const nlohmann::json& json, const std::string& file);
+
+// Names accepted in case files, for `vivv list` and error messages.
+std::vector<std::string> system_names();
+std::vector<std::string> claim_names();
+
+}  // namespace vivv

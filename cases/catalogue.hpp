@@ -1,0 +1,90 @@
+// The catalogue: system names to system types, and the vocabulary of case files.
+//
+// `visit_system<T>(name, parameters, f)` builds the named system in scalar T
+// and calls the generic f(system); this is where run-time names meet the
+// compile-time system types of cases/systems.hpp.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <optional>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "cases/systems.hpp"
+#include "core/scalar.hpp"
+
+namespace vivv {
+
+// Every catalogue system, instantiated at scalar T.
+template <class T>
+using CatalogueSystems = std::tuple<PaperExample<T>, HarmonicOscillator<T>, Pendulum<T>,
+                                    RelativisticParticle<T>, ChargedParticle<T>>;
+
+// Claim ids a case may ask for (DESIGN §1.5); harness/claims.hpp implements each.
+inline const std::vector<std::string>& claim_ids() {
+  static const std::vector<std::string> ids = {"global-order", "lagrangian-order", "legendre-order",
+                                               "twin-term-invariance", "mismatched-legendre"};
+  return ids;
+}
+
+struct SystemInfo {
+  std::string name;
+  int dimension;
+  std::vector<ParameterSpec> parameters;
+};
+
+// Name, dimension and parameters of every catalogue system.
+inline std::vector<SystemInfo> system_catalogue() {
+  std::vector<SystemInfo> info;
+  std::apply(
+      [&](auto... system) {
+        (info.push_back({decltype(system)::name, decltype(system)::dimension,
+                         decltype(system)::parameters()}),
+         ...);
+      },
+      CatalogueSystems<double>{});
+  return info;
+}
+
+// Builds the system `name` in scalar T with `parameters` (decimal strings in
+// the order of its ParameterSpec list) and returns f(system).
+template <class T, class F>
+auto visit_system(const std::string& name, const std::vector<std::string>& parameters,
+                            F&& f) {
+  return std::apply(
+      [&](auto... candidates) {
+        using Result = decltype(f(std::get<0>(CatalogueSystems<T>{})));
+        if constexpr (std::is_void_v<Result>) {
+          bool found = false;
+          (
+              [&](auto system) {
+                if (found || name != decltype(system)::name) return;
+                found = true;
+                std::vector<T> values;
+                for (const auto& p : parameters) values.push_back(from_decimal<T>(p));
+                system.set(values);
+                f(system);
+              }(candidates),
+              ...);
+          if (!found) throw std::invalid_argument("unknown system '" + name + "'");
+        } else {
+          std::optional<Result> result;
+          (
+              [&](auto system) {
+                if (result || name != decltype(system)::name) return;
+                std::vector<T> values;
+                for (const auto& p : parameters) values.push_back(from_decimal<T>(p));
+                system.set(values);
+                result.emplace(f(system));
+              }(candidates),
+              ...);
+          if (!result) throw std::invalid_argument("unknown system '" + name + "'");
+          return std::move(*result);
+        }
+      },
+      CatalogueSystems<T>{});
+}
+
+}  // namespace vivv

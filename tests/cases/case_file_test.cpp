@@ -1,0 +1,109 @@
+#include "cases/case_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "cases/catalogue.hpp"
+
+namespace vivv {
+namespace {
+
+nlohmann::json minimal_case() {
+  return nlohmann::json::parse(R"({
+    "name": "c", "system": {"name": "pendulum", "params": {"k": "2"}},
+    "initial": {"q": ["1.1"], "w": ["0"]}, "T": "2", "steps": [16, 32, 64], "digits": 30,
+    "discretization": {"kind": "left-rectangle", "twin": {"a": ["1"], "power": 1}},
+    "past_discretization": {"kind": "left-rectangle"},
+    "claims": ["global-order", "twin-term-invariance"], "expect": {"global-order": 1}})");
+}
+
+// The field a CaseError names, or "" when parsing succeeds.
+std::string failing_field(const nlohmann::json& json) {
+  try {
+    parse_case(json, "case.json");
+  } catch (const CaseError& error) {
+    return error.field;
+  }
+  return "";
+}
+
+TEST(CaseFile, TheIssueExampleParsesWithDefaultsFilledIn) {
+  CaseSpec spec = parse_case(minimal_case(), "case.json");
+  EXPECT_EQ(spec.system, "pendulum");
+  ASSERT_EQ(spec.parameters.size(), 1u);
+  EXPECT_EQ(spec.parameters[0].second, "2");
+  EXPECT_EQ(spec.steps, (std::vector<int>{16, 32, 64}));
+  ASSERT_TRUE(spec.discretization.twin);
+  EXPECT_EQ(spec.discretization.twin->a, std::vector<std::string>{"1"});
+  EXPECT_TRUE(spec.past_discretization);
+  EXPECT_EQ(spec.expect.at("global-order"), 1);
+  nlohmann::json defaults = minimal_case();
+  defaults["system"].erase("params");
+  EXPECT_EQ(parse_case(defaults, "case.json").parameters[0].second, "1");
+}
+
+// Each malformed variant must be rejected with the field that is wrong.
+TEST(CaseFile, MalformedFieldsAreNamed) {
+  struct Row {
+    std::string pointer;  // JSON pointer to change
+    nlohmann::json value;
+    std::string field;    // expected field in the error
+  };
+  std::vector<Row> rows = {
+      {"/system/name", "pendulumm", "system.name"},
+      {"/system/params/k", 1, "system.params.k"},
+      {"/system/params/omega", "1", "system.params.omega"},
+      {"/initial/q", nlohmann::json::array({"1", "2"}), "initial.q"},
+      {"/initial/w/0", "fast", "initial.w[0]"},
+      {"/T", "-1", "T"},
+      {"/T", 2, "T"},
+      {"/steps", nlohmann::json::array({16, 32}), "steps"},
+      {"/steps/1", 8, "steps"},
+      {"/digits", 5, "digits"},
+      {"/discretization/kind", "simpson", "discretization.kind"},
+      {"/discretization/twin/power", 0, "discretization.twin.power"},
+      {"/discretization/twin/a", nlohmann::json::array({"1", "1"}), "discretization.twin.a"},
+      {"/discretization/colour", "red", "discretization.colour"},
+      {"/claims/0", "energy-drift", "claims[0]"},
+      {"/expect/lagrangian-order", 2, "expect.lagrangian-order"},
+      {"/start", "guess", "start"},
+      {"/unexpected", true, "unexpected"},
+  };
+  for (const auto& row : rows) {
+    nlohmann::json json = minimal_case();
+    json[nlohmann::json::json_pointer(row.pointer)] = row.value;
+    EXPECT_EQ(failing_field(json), row.field) << row.pointer << " = " << row.value.dump();
+  }
+  nlohmann::json missing = minimal_case();
+  missing.erase("T");
+  EXPECT_EQ(failing_field(missing), "T");
+  nlohmann::json alpha = minimal_case();
+  alpha["discretization"] = {{"kind", "alpha"}};
+  EXPECT_EQ(failing_field(alpha), "discretization.alpha");
+  nlohmann::json no_twin = minimal_case();
+  no_twin["discretization"].erase("twin");
+  EXPECT_EQ(failing_field(no_twin), "claims[1]");
+}
+
+TEST(CaseFile, EveryDefaultSuiteCaseParses) {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(VIVV_SOURCE_DIR) + "/cases/suite")) {
+    EXPECT_NO_THROW(read_case_file(entry.path().string())) << entry.path();
+    ++count;
+  }
+  EXPECT_GE(count, 10);
+}
+
+TEST(CaseFile, CatalogueBuildsEverySystemWithItsDefaults) {
+  for (const auto& info : system_catalogue()) {
+    std::vector<std::string> defaults;
+    for (const auto& p : info.parameters) defaults.push_back(p.default_value);
+    int dimension = visit_system<double>(info.name, defaults, [](auto system) { return decltype(system)::dimension; });
+    EXPECT_EQ(dimension, info.dimension);
+  }
+  EXPECT_THROW(visit_system<double>("nonexistent", {}, [](auto) { return 0; }), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace vivv
