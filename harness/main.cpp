@@ -1,1 +1,235 @@
-int main() { return 0; }
+// vivv: the command-line tool (DESIGN §3).
+//
+//   vivv run [CASE.json ...] [--out DIR] [--digits D] [--jobs J] [--progress]
+//   vivv list
+//
+// Exit codes: 0 every claim holds, 1 a claim fails, 2 bad input (the message
+// names the file, the field and what was expected; no report is written).
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cases/case_file.hpp"
+#include "cases/catalogue.hpp"
+#include "core/discrete_lagrangian.hpp"
+#include "harness/claims.hpp"
+#include "harness/run_case.hpp"
+#include "harness/version.hpp"
+#include "reports/report.hpp"
+
+namespace fs = std::filesystem;
+
+namespace vivv {
+namespace {
+
+constexpr int exit_pass = 0, exit_fail = 1, exit_bad_input = 2;
+
+struct BadInput : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct RunOptions {
+  std::vector<std::string> case_files;
+  std::string out = "vivv-report";
+  std::optional<int> digits;
+  int jobs = 1;
+  bool progress = isatty(STDERR_FILENO);
+};
+
+std::string default_suite_directory() { return std::string(VIVV_SOURCE_DIR) + "/cases/suite"; }
+
+std::vector<std::string> default_suite() {
+  std::vector<std::string> files;
+  for (const auto& entry : fs::directory_iterator(default_suite_directory()))
+    if (entry.path().extension() == ".json") files.push_back(entry.path().string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+int parse_integer(const std::string& flag, const std::string& text, int low, int high) {
+  try {
+    std::size_t used = 0;
+    int value = std::stoi(text, &used);
+    if (used == text.size() && value >= low && value <= high) return value;
+  } catch (const std::exception&) {
+  }
+  throw BadInput(flag + ": expected an integer in [" + std::to_string(low) + ", " +
+                 std::to_string(high) + "], got '" + text + "'");
+}
+
+RunOptions parse_run_options(const std::vector<std::string>& args) {
+  RunOptions options;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= args.size()) throw BadInput(arg + ": missing value");
+      return args[++i];
+    };
+    if (arg == "--out") options.out = value();
+    else if (arg == "--digits") options.digits = parse_integer(arg, value(), 20, 2000);
+    else if (arg == "--jobs") options.jobs = parse_integer(arg, value(), 1, 64);
+    else if (arg == "--progress") options.progress = true;
+    else if (arg == "--quiet") options.progress = false;
+    else if (arg.rfind("--", 0) == 0) throw BadInput("unknown option '" + arg + "'");
+    else options.case_files.push_back(arg);
+  }
+  if (options.case_files.empty()) options.case_files = default_suite();
+  return options;
+}
+
+// Progress on stderr: elapsed seconds and what is being computed.
+std::function<void(const std::string&)> progress_printer(bool enabled) {
+  if (!enabled) return {};
+  auto started = std::chrono::steady_clock::now();
+  return [started](const std::string& message) {
+    double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    std::cerr << "[" << std::fixed << std::setprecision(1) << elapsed << " s] " << message << "\n";
+  };
+}
+
+// Runs one case; solver failures and non-regular Lagrangians are bad input.
+nlohmann::json run_one(const CaseSpec& spec, const RunOptions& options) {
+  try {
+    return case_json(run_case(spec, options.digits, progress_printer(options.progress)));
+  } catch (const SolverError& error) {
+    throw BadInput(spec.file + ": " + error.what() + " (reduce h: increase the step counts)");
+  } catch (const SingularLagrangianError& error) {
+    throw BadInput(spec.file + ": " + error.what());
+  } catch (const std::domain_error& error) {
+    throw BadInput(spec.file + ": " + error.what());
+  }
+}
+
+// Runs the cases in up to `jobs` worker processes (MPFR's working precision
+// is process-wide in Boost 1.74, so parallel cases need processes, not threads).
+std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const RunOptions& options) {
+  std::vector<nlohmann::json> results(specs.size());
+  if (options.jobs == 1) {
+    for (std::size_t i = 0; i < specs.size(); ++i) results[i] = run_one(specs[i], options);
+    return results;
+  }
+  fs::path work = fs::temp_directory_path() / ("vivv-" + std::to_string(getpid()));
+  fs::create_directories(work);
+  std::map<pid_t, std::size_t> running;
+  std::string failures;
+  std::size_t next = 0;
+  auto reap = [&]() {
+    int status = 0;
+    pid_t pid = wait(&status);
+    std::size_t index = running.at(pid);
+    running.erase(pid);
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+      failures += specs[index].file + " failed in its worker process\n";
+      return;
+    }
+    std::ifstream in(work / (std::to_string(index) + ".json"));
+    results[index] = nlohmann::json::parse(in);
+  };
+  while (next < specs.size() || !running.empty()) {
+    if (next < specs.size() && static_cast<int>(running.size()) < options.jobs) {
+      std::cout.flush();
+      std::cerr.flush();
+      pid_t pid = fork();
+      if (pid == 0) {
+        int code = 0;
+        try {
+          std::ofstream(work / (std::to_string(next) + ".json")) << run_one(specs[next], options).dump();
+        } catch (const std::exception& error) {
+          std::cerr << "vivv: " << error.what() << "\n";
+          code = exit_bad_input;
+        }
+        std::_Exit(code);
+      }
+      if (pid < 0) throw std::runtime_error("fork failed");
+      running[pid] = next++;
+    } else {
+      reap();
+    }
+  }
+  fs::remove_all(work);
+  if (!failures.empty()) throw BadInput(failures + "(see the messages above)");
+  return results;
+}
+
+int command_run(const std::vector<std::string>& args, const std::string& command_line) {
+  RunOptions options = parse_run_options(args);
+  std::vector<CaseSpec> specs;
+  std::map<std::string, std::string> names;
+  for (const auto& file : options.case_files) {
+    specs.push_back(read_case_file(file));
+    auto [it, fresh] = names.emplace(specs.back().name, file);
+    if (!fresh)
+      throw CaseError(file, "name", "'" + specs.back().name + "' is also the name of " + it->second);
+  }
+  std::vector<nlohmann::json> cases = run_all(specs, options);
+  nlohmann::json report = assemble_report(cases, {command_line, library_versions()});
+  fs::create_directories(options.out);
+  write_atomically((fs::path(options.out) / "report.json").string(), report.dump(2) + "\n");
+  print_claims_table(std::cout, report);
+  std::cout << "report: " << (fs::path(options.out) / "report.json").string() << "\n";
+  return report["summary"]["fail"].get<int>() + report["summary"]["error"].get<int>() == 0 ? exit_pass
+                                                                                         : exit_fail;
+}
+
+int command_list() {
+  std::cout << "systems:\n";
+  for (const auto& system : system_catalogue()) {
+    std::cout << "  " << system.name << " (n = " << system.dimension << ")";
+    for (const auto& p : system.parameters) std::cout << " " << p.name << "=" << p.default_value;
+    std::cout << "\n";
+  }
+  std::cout << "discretizations (Q×Q rules):\n";
+  for (const auto& rule : rule_names()) std::cout << "  " << rule << "\n";
+  std::cout << "claims:\n";
+  for (const auto& claim : registered_claims())
+    std::cout << "  " << claim.id << " [" << claim.source << "]: " << claim.prediction << "\n";
+  std::cout << "cases (" << default_suite_directory() << "):\n";
+  for (const auto& file : default_suite()) std::cout << "  " << fs::path(file).filename().string() << "\n";
+  return exit_pass;
+}
+
+int usage(std::ostream& out, int code) {
+  out << "usage: vivv run [CASE.json ...] [--out DIR] [--digits D] [--jobs J] [--progress|--quiet]\n"
+         "       vivv list\n";
+  return code;
+}
+
+}  // namespace
+}  // namespace vivv
+
+int main(int argc, char** argv) {
+  using namespace vivv;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  std::string command_line;
+  for (int i = 0; i < argc; ++i) {
+    if (i > 0) command_line += ' ';
+    command_line += argv[i];
+  }
+  if (args.empty()) return usage(std::cerr, exit_bad_input);
+  std::string command = args.front();
+  args.erase(args.begin());
+  try {
+    if (command == "run") return command_run(args, command_line);
+    if (command == "list") return command_list();
+    if (command == "--help" || command == "help") return usage(std::cout, exit_pass);
+    std::cerr << "vivv: unknown command '" << command << "'\n";
+    return usage(std::cerr, exit_bad_input);
+  } catch (const CaseError& error) {
+    std::cerr << "vivv: " << error.what() << "\n";
+    return exit_bad_input;
+  } catch (const BadInput& error) {
+    std::cerr << "vivv: " << error.what() << "\n";
+    return exit_bad_input;
+  }
+}

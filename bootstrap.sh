@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# The two entry points of the README, for a fresh Debian 12 machine:
+#   bash bootstrap.sh run    install what is missing, build, run the default suite (writes vivv-report/)
+#   bash bootstrap.sh test   install what is missing, build, run every test (ctest)
+set -euo pipefail
+cd "$(dirname "$0")"
+
+mode=${1:-}
+case "$mode" in run|test) ;; *) echo "usage: bash bootstrap.sh run|test" >&2; exit 2 ;; esac
+
+# Debian packages vivv builds and tests with (DESIGN §2; nothing else, nothing downloaded).
+packages=(g++ cmake make libeigen3-dev libboost-dev libmpfr-dev libgmp-dev nlohmann-json3-dev
+          libgtest-dev libbenchmark-dev)
+missing=()
+for package in "${packages[@]}"; do
+  dpkg -s "$package" >/dev/null 2>&1 || missing+=("$package")
+done
+if ((${#missing[@]})); then
+  echo "installing: ${missing[*]}"
+  sudo_cmd=""; [ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
+  $sudo_cmd apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq "${missing[@]}"
+fi
+
+jobs=$(nproc)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build -j "$jobs"
+
+if [ "$mode" = run ]; then
+  exec build/harness/vivv run --out vivv-report --jobs "$jobs" --progress
+else
+  cd build && exec ctest --output-on-failure -j "$jobs"
+fi

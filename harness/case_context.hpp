@@ -1,0 +1,113 @@
+// A case made concrete in scalar T for one system: the parsed numbers, the
+// schemes, the reference flow and the step sweep every claim measures over.
+#pragma once
+
+#include <algorithm>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cases/case_file.hpp"
+#include "core/del_evolution.hpp"
+#include "core/state.hpp"
+#include "harness/claim_result.hpp"
+#include "references/reference_flow.hpp"
+
+namespace vivv {
+
+// The Q×Q discretization a case file describes, in scalar T.
+template <class T>
+QxQDiscretization<T> make_discretization(const DiscretizationSpec& spec) {
+  QxQDiscretization<T> d;
+  d.rule = *rule_from_name(spec.kind);
+  if (spec.parameter) d.parameter = from_decimal<T>(*spec.parameter);
+  if (spec.twin) {
+    TwinTerm<T> twin;
+    for (const auto& a : spec.twin->a) twin.a.push_back(from_decimal<T>(a));
+    twin.power = spec.twin->power;
+    d.twin = twin;
+  }
+  return d;
+}
+
+// Reference tolerance for a case computed with `digits` decimal digits: ten
+// digits of the working precision are kept as guard.
+template <class T>
+T reference_tolerance_for(int digits) {
+  using std::pow;
+  return pow(T(10), -(digits - 10));
+}
+
+template <LagrangianSystem System>
+struct CaseContext {
+  using T = typename System::Scalar;
+  static constexpr int n = System::dimension;
+
+  const CaseSpec& spec;
+  System system;
+  ReferenceFlow<System> reference;
+  State<T, n> initial;
+  T final_time;
+  DelScheme<T> scheme;
+  double order_tolerance;
+  std::function<void(const std::string&)> progress;
+
+  CaseContext(const CaseSpec& spec_, System system_, std::function<void(const std::string&)> progress_)
+      : spec(spec_),
+        system(system_),
+        reference(system_, reference_tolerance_for<T>(spec_.digits)),
+        final_time(from_decimal<T>(spec_.final_time)),
+        order_tolerance(std::stod(spec_.order_tolerance)),
+        progress(std::move(progress_)) {
+    for (int i = 0; i < n; ++i) {
+      initial.q[i] = from_decimal<T>(spec.q[i]);
+      initial.w[i] = from_decimal<T>(spec.w[i]);
+    }
+    scheme.future = make_discretization<T>(spec.discretization);
+    scheme.past = spec.past_discretization ? make_discretization<T>(*spec.past_discretization)
+                                           : scheme.future;
+    scheme.mismatched = spec.past_discretization.has_value();
+  }
+
+  // h = T/N for every N of the sweep.
+  std::vector<T> steps() const {
+    std::vector<T> h;
+    for (int N : spec.steps) h.push_back(final_time / N);
+    return h;
+  }
+  // The order r of the case's discrete Lagrangian(s): the lower of the two sides.
+  int order() const { return std::min(scheme.future.nominal_order(), scheme.past.nominal_order()); }
+
+  // Exact order the case declares for `claim`, if any.
+  std::optional<int> expected(const std::string& claim) const {
+    auto it = spec.expect.find(claim);
+    if (it == spec.expect.end()) return std::nullopt;
+    return it->second;
+  }
+
+  // Errors below this are at the floor: a thousand times the larger of the
+  // reference tolerance and N_max rounding errors, relative to the state's size.
+  T floor() const {
+    using std::max;
+    T scale = max(T(1), max(max_norm<T, n>(initial.q), max_norm<T, n>(initial.w)));
+    return 1000 * max(reference.tolerance(), T(spec.steps.back()) * epsilon<T>()) * scale;
+  }
+
+  // Reference state F_t(initial).
+  State<T, n> exact(const T& t) const { return reference.advance(initial, t); }
+
+  // q_0, q_1 for N steps: q_1 from the reference flow (isolating the
+  // method's own error) or from p_begin(q_0, q_1) = p(0).
+  std::pair<Vector<T, n>, Vector<T, n>> start(const DelScheme<T>& with, const T& h) const {
+    if (spec.start == "momentum")
+      return {initial.q, start_from_momentum(system, with.future, initial.q, initial.w, h)};
+    return {initial.q, exact(h).q};
+  }
+
+  void report(const std::string& message) const {
+    if (progress) progress(message);
+  }
+};
+
+}  // namespace vivv

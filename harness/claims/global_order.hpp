@@ -1,0 +1,71 @@
+// global-order: the error in q at fixed T over N = T/h DEL steps is O(h^r)
+// (Marsden–West Thm 2.3.1 item 1; the corollary of paper Thm 5.5).
+#pragma once
+
+#include "harness/case_context.hpp"
+#include "harness/series.hpp"
+
+namespace vivv {
+
+// Final positions and end momenta p_end(q_{N−1}, q_N) of the DEL run for
+// every N of the sweep, with the solver's worst iteration count and residual.
+template <LagrangianSystem System>
+struct SweepRun {
+  using T = typename System::Scalar;
+  std::vector<Vector<T, System::dimension>> q_final, p_final;
+  std::vector<DelTrajectory<T, System::dimension>> trajectories;
+};
+
+template <LagrangianSystem System>
+SweepRun<System> run_sweep(const CaseContext<System>& context, const DelScheme<typename System::Scalar>& scheme,
+                           bool keep_trajectories = false) {
+  using T = typename System::Scalar;
+  SweepRun<System> run;
+  std::vector<T> steps = context.steps();
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const T& h = steps[i];
+    int N = context.spec.steps[i];
+    context.report("DEL sweep N = " + std::to_string(N));
+    auto [q0, q1] = context.start(scheme, h);
+    auto trajectory = del_trajectory(context.system, scheme, q0, q1, h, N);
+    run.q_final.push_back(trajectory.q[N]);
+    run.p_final.push_back(discrete_legendre(context.system, scheme.future, trajectory.q[N - 1],
+                                            trajectory.q[N], h)
+                              .p_end);
+    if (keep_trajectories) run.trajectories.push_back(std::move(trajectory));
+  }
+  return run;
+}
+
+struct GlobalOrderClaim {
+  static constexpr const char* id = "global-order";
+  static constexpr const char* source = "Marsden–West Thm 2.3.1 (1); paper Thm 5.5 corollary";
+  static constexpr const char* prediction =
+      "|q_N − q(T)| = O(h^r) after N = T/h steps of an order-r discrete Lagrangian";
+
+  template <LagrangianSystem System>
+  static ClaimResult evaluate(const CaseContext<System>& context) {
+    using T = typename System::Scalar;
+    constexpr int n = System::dimension;
+    ClaimResult claim = claim_result_for(id, source, prediction);
+    auto expected = context.expected(id);
+    double predicted = expected ? *expected : context.order();
+    SweepRun<System> run = run_sweep(context, context.scheme);
+    State<T, n> final_state = context.exact(context.final_time);
+    Vector<T, n> p_exact = momentum(context.system, final_state.q, final_state.w);
+    std::vector<T> q_error, p_error;
+    for (std::size_t i = 0; i < run.q_final.size(); ++i) {
+      q_error.push_back(max_norm<T, n>(run.q_final[i] - final_state.q));
+      p_error.push_back(max_norm<T, n>(run.p_final[i] - p_exact));
+    }
+    claim.series.push_back(make_series("|q_N − q(T)|", context.steps(), q_error, context.floor(),
+                                       predicted, expected.has_value(), context.order_tolerance));
+    claim.series.push_back(make_series("|p_end(q_{N−1}, q_N) − p(T)|", context.steps(), p_error,
+                                       context.floor(), std::nullopt, false,
+                                       context.order_tolerance));
+    conclude(claim);
+    return claim;
+  }
+};
+
+}  // namespace vivv

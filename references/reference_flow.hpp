@@ -1,0 +1,167 @@
+// The near-exact flow F_t the harness measures every discretization against
+// (DESIGN §1.1, §2): the closed form where one exists (harmonic oscillator,
+// pendulum), otherwise Gragg–Bulirsch–Stoer extrapolation to a requested
+// tolerance. It says which method it used, what accuracy it claims and how
+// that claim is backed up.
+//
+// Accuracy means, for every component y_i of (q, w):
+//   |y_i − F_t(start)_i| ≤ tolerance() (1 + |F_t(start)_i|)       (within_tolerance).
+#pragma once
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+#include "cases/systems.hpp"
+#include "core/lagrangian.hpp"
+#include "core/scalar.hpp"
+#include "core/state.hpp"
+#include "references/closed_forms.hpp"
+#include "references/extrapolation_flow.hpp"
+
+namespace vivv {
+
+// Whether the reference flow of System is a closed form.
+template <class System>
+inline constexpr bool has_closed_form_v =
+    std::is_same_v<System, HarmonicOscillator<typename System::Scalar>> ||
+    std::is_same_v<System, Pendulum<typename System::Scalar>>;
+
+// Accuracy a closed form claims: 256 ε, before amplification by the flow's conditioning ‖DF_t‖.
+template <class T>
+T closed_form_tolerance() {
+  return 256 * epsilon<T>();
+}
+
+// Whether |a_i − b_i| ≤ tol (1 + |b_i|) for every component of q and w.
+template <class T, int n>
+bool within_tolerance(const State<T, n>& a, const State<T, n>& b, const T& tol) {
+  using std::abs;
+  for (int i = 0; i < n; ++i) {
+    if (!(abs(a.q[i] - b.q[i]) <= tol * (1 + abs(b.q[i])))) return false;
+    if (!(abs(a.w[i] - b.w[i]) <= tol * (1 + abs(b.w[i])))) return false;
+  }
+  return true;
+}
+
+template <LagrangianSystem System>
+class ReferenceFlow {
+ public:
+  using T = typename System::Scalar;
+  static constexpr int n = System::dimension;
+  static constexpr bool closed_form = has_closed_form_v<System>;
+
+  // `tolerance`: the global tolerance of the extrapolation flow, raised to
+  // minimum_flow_tolerance if below it (tolerance() and method() say so); a
+  // closed form ignores it.
+  ReferenceFlow(System system, T tolerance)
+      : system_(std::move(system)), requested_tolerance_(std::move(tolerance)) {
+    using std::max;
+    if (!(requested_tolerance_ > 0)) {
+      throw std::invalid_argument("ReferenceFlow: tolerance must be positive, got " +
+                                  to_decimal<T>(requested_tolerance_));
+    }
+    effective_tolerance_ = closed_form ? closed_form_tolerance<T>()
+                                       : max(requested_tolerance_, minimum_flow_tolerance<T>());
+  }
+
+  const System& system() const { return system_; }
+
+  // F_t(start), the exact flow (t may be negative).
+  State<T, n> advance(const State<T, n>& start, const T& t) const {
+    if constexpr (std::is_same_v<System, HarmonicOscillator<T>>) {
+      return harmonic_oscillator_flow(system_, start, t);
+    } else if constexpr (std::is_same_v<System, Pendulum<T>>) {
+      return pendulum_flow(system_, start, t);
+    } else {
+      return extrapolation_flow(system_, start, t, effective_tolerance_).state;
+    }
+  }
+
+  // The accuracy claimed: closed_form_tolerance for a closed form, else the (floored) requested
+  // one.
+  T tolerance() const { return effective_tolerance_; }
+
+  // ‖advance(start, t) − F̃_t(start)‖_max for the independent, tighter F̃ of cross_check().
+  T estimate_error(const State<T, n>& start, const T& t) const {
+    ExtrapolationOptions<T> options;
+    options.local_tolerance = check_local_tolerance();
+    State<T, n> check = extrapolation_flow(system_, start, t, effective_tolerance_, options).state;
+    return state_distance<T, n>(advance(start, t), check);
+  }
+
+  // e.g. "closed form: Jacobi elliptic functions" or "Gragg–Bulirsch–Stoer extrapolation, tol
+  // 1e-50".
+  std::string method() const {
+    if constexpr (std::is_same_v<System, HarmonicOscillator<T>>) {
+      return "closed form: q0 cos(omega t) + (w0/omega) sin(omega t)";
+    } else if constexpr (std::is_same_v<System, Pendulum<T>>) {
+      return "closed form: Jacobi elliptic functions (Boost.Math sn, cn, F)";
+    } else {
+      std::string text =
+          "Gragg–Bulirsch–Stoer extrapolation, tol " + short_decimal(effective_tolerance_);
+      if (effective_tolerance_ > requested_tolerance_) {
+        text += " (requested " + short_decimal(requested_tolerance_) +
+                ", below the floor of 10⁸ ulps of " + scalar_name<T>() + ")";
+      }
+      return text;
+    }
+  }
+
+  // How tolerance() is backed up.
+  std::string cross_check() const {
+    const std::string check = short_decimal(check_local_tolerance());
+    if constexpr (closed_form) {
+      return "closed form in " + scalar_name<T>() + " (" + std::to_string(precision_bits<T>()) +
+             " bits), accurate to a few ulps times the conditioning of the flow; unit tests "
+             "compare it with the same formula at 100 digits and with Gragg–Bulirsch–Stoer "
+             "extrapolation; estimate_error(v, t) is its max-norm distance to that extrapolation "
+             "at local tolerance " +
+             check + " (1000 ulps)";
+    } else {
+      const bool floored =
+          check_local_tolerance() > tighter(local_tolerance_for(effective_tolerance_));
+      return "local error control at tol/1e6 per step; estimate_error(v, t) reruns the "
+             "extrapolation at local tolerance " +
+             check +
+             (floored ? " (1000 ulps, the working-precision floor, rather than tol·1e-10/1e6)"
+                      : " (tol·1e-10/1e6)") +
+             " and reports the max-norm difference, an estimate of the global error";
+    }
+  }
+
+  // Smallest local tolerance of the check: 1000 ε (100 ε is reachable, but slowly).
+  static T check_floor() { return 1000 * epsilon<T>(); }
+
+ private:
+  static T tighter(const T& tol) {
+    using std::pow;
+    return tol / pow(T(10), 10);
+  }
+
+  // Local tolerance of the independent check: 10⁻¹⁰ times the flow's, at least 1000 ε.
+  T check_local_tolerance() const {
+    using std::max;
+    if constexpr (closed_form) {
+      return check_floor();
+    } else {
+      return max(tighter(local_tolerance_for(effective_tolerance_)), check_floor());
+    }
+  }
+
+  static std::string short_decimal(const T& x) {
+    std::ostringstream out;
+    out << std::setprecision(3) << x;
+    return out.str();
+  }
+
+  System system_;
+  T requested_tolerance_;
+  T effective_tolerance_;
+};
+
+}  // namespace vivv
