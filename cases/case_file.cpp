@@ -69,6 +69,20 @@ class Reader {
       throw CaseError(file_, where, "expected a decimal number, got \"" + text + "\"");
     return text;
   }
+  // A number in [0, 1] written as a decimal string or a fraction "p/q".
+  std::string fraction(const std::string& key) {
+    const auto& value = get(key);
+    static const std::regex pattern(R"((\d+\.?\d*|\.\d+)(/[1-9]\d*)?)");
+    if (!value.is_string() || !std::regex_match(value.get<std::string>(), pattern))
+      fail(key, "expected a decimal or a fraction such as \"1/2\", got " + value.dump());
+    std::string text = value.get<std::string>();
+    auto slash = text.find('/');
+    long double x = slash == std::string::npos
+                        ? std::stold(text)
+                        : std::stold(text.substr(0, slash)) / std::stold(text.substr(slash + 1));
+    if (x < 0 || x > 1) fail(key, "expected a value in [0, 1], got \"" + text + "\"");
+    return text;
+  }
   std::vector<std::string> decimals(const std::string& key, std::size_t size) {
     const auto& value = get(key);
     if (!value.is_array() || value.size() != size)
@@ -120,12 +134,26 @@ class Reader {
   std::set<std::string> known_;
 };
 
-DiscretizationSpec read_discretization(Reader reader, int dimension) {
+DiscretizationSpec read_discretization(Reader reader, int dimension, bool allow_tq = true) {
   DiscretizationSpec spec;
-  spec.kind = reader.one_of("kind", rule_names());
-  QxQRule rule = *rule_from_name(spec.kind);
-  if (rule == QxQRule::alpha) spec.parameter = reader.decimal("alpha");
-  if (rule == QxQRule::weighted) spec.parameter = reader.decimal("beta");
+  if (reader.has("formalism"))
+    spec.formalism = reader.one_of("formalism", allow_tq ? std::vector<std::string>{"qxq", "tq"}
+                                                         : std::vector<std::string>{"qxq"});
+  if (spec.formalism == "tq") {
+    TQSpec tq;
+    tq.psi = reader.one_of("psi", {"linear"});
+    tq.theta = reader.fraction("theta");
+    tq.lagrangian = reader.one_of("lagrangian", {"quadrature", "pullback"});
+    if (tq.lagrangian == "quadrature") tq.nodes = reader.integer("nodes", 1, 64);
+    if (tq.lagrangian == "pullback")
+      tq.qxq = std::make_shared<DiscretizationSpec>(read_discretization(reader.object("qxq"), dimension, false));
+    spec.tq = tq;
+  } else {
+    spec.kind = reader.one_of("kind", rule_names());
+    QxQRule rule = *rule_from_name(spec.kind);
+    if (rule == QxQRule::alpha) spec.parameter = reader.decimal("alpha");
+    if (rule == QxQRule::weighted) spec.parameter = reader.decimal("beta");
+  }
   if (reader.has("twin")) {
     Reader twin = reader.object("twin");
     spec.twin = TwinSpec{twin.decimals("a", dimension), twin.integer("power", 1, 16)};
@@ -190,6 +218,9 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   if (reader.has("past_discretization"))
     spec.past_discretization =
         read_discretization(reader.object("past_discretization"), info.dimension);
+  if (reader.has("compare_discretization"))
+    spec.compare_discretization =
+        read_discretization(reader.object("compare_discretization"), info.dimension);
   if (reader.has("start")) spec.start = reader.one_of("start", {"reference", "momentum"});
   if (reader.has("order_tolerance")) {
     spec.order_tolerance = reader.decimal("order_tolerance");
@@ -210,7 +241,20 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
       throw CaseError(file, where, "twin-term-invariance needs discretization.twin");
     if (id == "mismatched-legendre" && !spec.past_discretization)
       throw CaseError(file, where, "mismatched-legendre needs past_discretization");
+    bool tq = spec.discretization.formalism == "tq";
+    if (!tq && tq_claim_ids().count(id))
+      throw CaseError(file, where, id + " is a claim about discretizations of TQ: needs discretization.formalism \"tq\"");
+    if (tq && qxq_claim_ids().count(id))
+      throw CaseError(file, where, id + " is a claim about Q×Q discrete Lagrangians: needs discretization.formalism \"qxq\"");
+    if (id == "contact-order" && !spec.compare_discretization)
+      throw CaseError(file, where, "contact-order needs compare_discretization");
+    if (id == "qxq-tq-equivalence" && (!tq || spec.discretization.tq->lagrangian != "pullback"))
+      throw CaseError(file, where, "qxq-tq-equivalence needs a TQ discretization with lagrangian \"pullback\"");
   }
+  if (spec.past_discretization && spec.discretization.formalism != "qxq")
+    reader.fail("past_discretization", "a mismatched DEL needs Q×Q discretizations");
+  if (spec.compare_discretization && spec.compare_discretization->formalism != spec.discretization.formalism)
+    reader.fail("compare_discretization", "expected the same formalism as discretization");
   if (reader.has("expect")) {
     Reader expect = reader.object("expect");
     for (const auto& id : spec.claims)

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -26,10 +27,26 @@ struct TwinSpec {
   int power = 1;
 };
 
+struct DiscretizationSpec;
+
+// A discretization of TQ (DESIGN §1.3): {"formalism": "tq", "psi": "linear",
+// "theta": "1/2", "lagrangian": "quadrature", "nodes": 4} or
+// {"formalism": "tq", "psi": "linear", "theta": "0", "lagrangian": "pullback",
+//  "qxq": {"kind": "midpoint"}}, each with an optional twin term.
+struct TQSpec {
+  std::string psi = "linear";
+  std::string theta = "0";  // a decimal or a fraction "p/q" in [0, 1]
+  std::string lagrangian = "quadrature";
+  int nodes = 0;  // Gauss–Legendre nodes (quadrature)
+  std::shared_ptr<DiscretizationSpec> qxq;  // pulled-back Q×Q discrete Lagrangian (pullback)
+};
+
 struct DiscretizationSpec {
+  std::string formalism = "qxq";         // "qxq" or "tq"
   std::string kind;                      // a Q×Q rule name (core/discrete_lagrangian.hpp)
   std::optional<std::string> parameter;  // "alpha" or "beta", for the rules that take one
   std::optional<TwinSpec> twin;
+  std::optional<TQSpec> tq;              // formalism "tq"
 };
 
 struct CaseSpec {
@@ -44,6 +61,7 @@ struct CaseSpec {
   int digits = 60;
   DiscretizationSpec discretization;
   std::optional<DiscretizationSpec> past_discretization;
+  std::optional<DiscretizationSpec> compare_discretization;  // contact-order: the second discretization
   std::string start = "reference";  // or "momentum"
   std::vector<std::string> claims;
   std::map<std::string, int> expect;     // exact orders a case declares

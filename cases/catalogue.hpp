@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 #include <optional>
+#include <set>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -24,8 +25,24 @@ using CatalogueSystems = std::tuple<PaperExample<T>, HarmonicOscillator<T>, Pend
 
 // Claim ids a case may ask for (DESIGN §1.5); harness/claims.hpp implements each.
 inline const std::vector<std::string>& claim_ids() {
-  static const std::vector<std::string> ids = {"global-order", "lagrangian-order", "legendre-order",
-                                               "twin-term-invariance", "mismatched-legendre"};
+  static const std::vector<std::string> ids = {
+      "global-order",       "lagrangian-order",    "legendre-order", "twin-term-invariance",
+      "mismatched-legendre", "order",              "contact-order",  "qxq-tq-equivalence",
+      "existence-uniqueness"};
+  return ids;
+}
+
+// Claims stated for Q×Q discrete Lagrangians only.
+inline const std::set<std::string>& qxq_claim_ids() {
+  static const std::set<std::string> ids = {"lagrangian-order", "legendre-order",
+                                            "twin-term-invariance", "mismatched-legendre"};
+  return ids;
+}
+
+// Claims stated for discretizations of TQ only (paper §4–6).
+inline const std::set<std::string>& tq_claim_ids() {
+  static const std::set<std::string> ids = {"order", "contact-order", "qxq-tq-equivalence",
+                                            "existence-uniqueness"};
   return ids;
 }
 

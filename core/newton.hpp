@@ -23,21 +23,26 @@ struct SolveReport {
   int iterations = 0;
   T residual = 0;    // max norm of F at the returned iterate
   T correction = 0;  // max norm of the last Newton correction
+  bool stalled = false;  // stopped at the rounding level of the residual (see newton_solve)
   std::string failure;
 };
 
 struct NewtonOptions {
   int max_iterations = 60;
-  // Converged when the correction is below correction_ulps · ε · max(1, |x|).
+  // Converged when each correction component is below correction_ulps · ε · max(scale_i, |x_i|).
   int correction_ulps = 64;
 };
 
 // Solves F(x) = 0 from x (updated in place). `evaluate(x, F, J)` fills the
 // residual F(x) and its Jacobian J = dF/dx. Iteration: x ← x − J⁻¹ F(x).
+// `scale[i]` is the size below which x_i's rounding is not measured: every
+// correction component must fall below correction_ulps · ε · max(scale_i, |x_i|).
 template <class T, int m, class Evaluate>
-SolveReport<T> newton_solve(Vector<T, m>& x, Evaluate&& evaluate, const NewtonOptions& options = {}) {
+SolveReport<T> newton_solve(Vector<T, m>& x, Evaluate&& evaluate, const NewtonOptions& options = {},
+                            const Vector<T, m>& scale = Vector<T, m>::Ones()) {
   using std::isfinite;
   SolveReport<T> report;
+  T previous_correction = 0;
   Vector<T, m> residual = Vector<T, m>::Zero();
   Matrix<T, m, m> jacobian = Matrix<T, m, m>::Zero();
   for (report.iterations = 1; report.iterations <= options.max_iterations; ++report.iterations) {
@@ -52,15 +57,28 @@ SolveReport<T> newton_solve(Vector<T, m>& x, Evaluate&& evaluate, const NewtonOp
     Vector<T, m> correction = lu.solve(residual);
     x -= correction;
     report.correction = max_norm<T, m>(correction);
-    T scale = std::max<T>(T(1), max_norm<T, m>(x));
     if (!isfinite(static_cast<T>(report.correction))) {
       report.failure = "the iteration diverged to a non-finite value";
       return report;
     }
-    if (report.correction <= options.correction_ulps * epsilon<T>() * scale) {
+    bool small = true;
+    for (int i = 0; i < m; ++i) {
+      using std::abs;
+      T size = std::max<T>(scale[i], abs(x[i]));
+      small = small && abs(correction[i]) <= options.correction_ulps * epsilon<T>() * size;
+    }
+    // Stalled at the residual's own rounding: the correction no longer halves
+    // although it is already far below √ε (quadratic convergence has happened;
+    // what is left is noise, e.g. from a difference of configurations over h).
+    using std::pow;
+    bool stalled = report.iterations > 2 && report.correction >= previous_correction / 2 &&
+                   report.correction <= pow(epsilon<T>(), T(3) / 4) * std::max<T>(T(1), max_norm<T, m>(x));
+    previous_correction = report.correction;
+    if (small || stalled) {
       evaluate(x, residual, jacobian);
       report.residual = max_norm<T, m>(residual);
       report.converged = true;
+      report.stalled = stalled && !small;
       return report;
     }
   }

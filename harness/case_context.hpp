@@ -11,6 +11,8 @@
 #include "cases/case_file.hpp"
 #include "core/del_evolution.hpp"
 #include "core/state.hpp"
+#include "core/tq_evolution.hpp"
+#include "references/gauss_legendre.hpp"
 #include "harness/claim_result.hpp"
 #include "references/reference_flow.hpp"
 
@@ -20,6 +22,15 @@ namespace vivv {
 template <class T>
 QxQDiscretization<T> make_discretization(const DiscretizationSpec& spec) {
   QxQDiscretization<T> d;
+  if (spec.formalism != "qxq") {
+    if (spec.twin) {  // only the twin term is shared with TQ discretizations
+      TwinTerm<T> twin;
+      for (const auto& a : spec.twin->a) twin.a.push_back(from_decimal<T>(a));
+      twin.power = spec.twin->power;
+      d.twin = twin;
+    }
+    return d;
+  }
   d.rule = *rule_from_name(spec.kind);
   if (spec.parameter) d.parameter = from_decimal<T>(*spec.parameter);
   if (spec.twin) {
@@ -29,6 +40,47 @@ QxQDiscretization<T> make_discretization(const DiscretizationSpec& spec) {
     d.twin = twin;
   }
   return d;
+}
+
+// A decimal "0.5" or a fraction "1/2", parsed in T.
+template <class T>
+T from_fraction(const std::string& text) {
+  auto slash = text.find('/');
+  if (slash == std::string::npos) return from_decimal<T>(text);
+  return from_decimal<T>(text.substr(0, slash)) / from_decimal<T>(text.substr(slash + 1));
+}
+
+// The TQ discretization a case file describes, in scalar T.
+template <class T>
+TQDiscretization<T> make_tq_discretization(const DiscretizationSpec& spec) {
+  const TQSpec& tq = *spec.tq;
+  TQDiscretization<T> d;
+  d.psi = CurveFamily::linear;
+  d.theta = from_fraction<T>(tq.theta);
+  if (tq.lagrangian == "quadrature") {
+    d.lagrangian = TQLagrangianKind::quadrature;
+    auto rule = gauss_legendre<T>(tq.nodes);
+    d.nodes = rule.nodes;
+    d.weights = rule.weights;
+  } else {
+    d.lagrangian = TQLagrangianKind::pullback;
+    d.qxq = make_discretization<T>(*tq.qxq);
+  }
+  if (spec.twin) d.twin = make_discretization<T>(spec).twin;
+  return d;
+}
+
+// Order r of a TQ discretization: its order of contact with the exact one
+// (Definition 5.4), the lower of the curve's and the Lagrangian's. A linear
+// psi agrees with the solution to O(t²): r = 1.
+template <class T>
+int nominal_order(const TQDiscretization<T>& d) {
+  int psi_order = 1;  // linear
+  int lagrangian_order = d.lagrangian == TQLagrangianKind::quadrature
+                             ? 2 * static_cast<int>(d.nodes.size())
+                             : d.qxq.nominal_order();
+  if (d.twin) lagrangian_order = std::min(lagrangian_order, d.twin->power);
+  return std::min(psi_order, lagrangian_order);
 }
 
 // Reference tolerance for a case computed with `digits` decimal digits: ten
@@ -49,7 +101,9 @@ struct CaseContext {
   ReferenceFlow<System> reference;
   State<T, n> initial;
   T final_time;
-  DelScheme<T> scheme;
+  DelScheme<T> scheme;                    // formalism "qxq"
+  std::optional<TQDiscretization<T>> tq;  // formalism "tq"
+  std::optional<TQDiscretization<T>> tq_compare;  // contact-order's second discretization
   double order_tolerance;
   std::function<void(const std::string&)> progress;
 
@@ -64,6 +118,10 @@ struct CaseContext {
       initial.q[i] = from_decimal<T>(spec.q[i]);
       initial.w[i] = from_decimal<T>(spec.w[i]);
     }
+    if (spec.discretization.formalism == "tq") {
+      tq = make_tq_discretization<T>(spec.discretization);
+      if (spec.compare_discretization) tq_compare = make_tq_discretization<T>(*spec.compare_discretization);
+    }
     scheme.future = make_discretization<T>(spec.discretization);
     scheme.past = spec.past_discretization ? make_discretization<T>(*spec.past_discretization)
                                            : scheme.future;
@@ -77,7 +135,10 @@ struct CaseContext {
     return h;
   }
   // The order r of the case's discrete Lagrangian(s): the lower of the two sides.
-  int order() const { return std::min(scheme.future.nominal_order(), scheme.past.nominal_order()); }
+  int order() const {
+    if (tq) return nominal_order(*tq);
+    return std::min(scheme.future.nominal_order(), scheme.past.nominal_order());
+  }
 
   // Exact order the case declares for `claim`, if any.
   std::optional<int> expected(const std::string& claim) const {

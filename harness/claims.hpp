@@ -9,12 +9,15 @@
 
 #include "harness/claims/global_order.hpp"
 #include "harness/claims/local_consistency.hpp"
+#include "harness/claims/tq_claims.hpp"
 #include "harness/claims/twin_term.hpp"
 
 namespace vivv {
 
-using ClaimRegistry = std::tuple<GlobalOrderClaim, LagrangianOrderClaim, LegendreOrderClaim,
-                                 TwinTermInvarianceClaim, MismatchedLegendreClaim>;
+using ClaimRegistry =
+    std::tuple<GlobalOrderClaim, LagrangianOrderClaim, LegendreOrderClaim, TwinTermInvarianceClaim,
+               MismatchedLegendreClaim, LocalOrderClaim, ContactOrderClaim, QxQTQEquivalenceClaim,
+               ExistenceUniquenessClaim>;
 
 struct ClaimInfo {
   std::string id, source, prediction;

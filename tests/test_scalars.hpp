@@ -6,12 +6,24 @@
 
 #include <memory>
 #include <random>
+#include <string>
 
 #include "core/scalar.hpp"
 
 namespace vivv::testing {
 
 using Scalars = ::testing::Types<double, quad, mpfr_real>;
+
+// Readable typed-test names: "double", "quad", "mpfr" instead of Boost's type names.
+struct ScalarNames {
+  template <class T>
+  static std::string GetName(int) {
+    std::string name = scalar_name<T>();
+    for (auto& c : name)
+      if (c == ' ') c = '_';
+    return name;
+  }
+};
 
 // MPFR tests run at 60 decimal digits (~200 bits) unless a test says otherwise.
 template <class T>

@@ -17,7 +17,7 @@ class DiscreteLagrangianTest : public testing::ScalarTest<T> {
     return d;
   }
 };
-TYPED_TEST_SUITE(DiscreteLagrangianTest, testing::Scalars);
+TYPED_TEST_SUITE(DiscreteLagrangianTest, testing::Scalars, testing::ScalarNames);
 
 // Paper §2.3: for L_h = h L(q−, (q+ − q−)/h) + a h (q+ − q−),
 //   F+L_h = g(q−)(q+ − q−)/h + a h,

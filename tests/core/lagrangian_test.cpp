@@ -8,7 +8,7 @@ namespace {
 
 template <class T>
 class LagrangianTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(LagrangianTest, testing::Scalars);
+TYPED_TEST_SUITE(LagrangianTest, testing::Scalars, testing::ScalarNames);
 
 // Automatic differentiation of the paper's L = ½ g(q) w² − V(q) against its
 // hand-written derivatives, at random points.

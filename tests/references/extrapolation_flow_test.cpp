@@ -14,7 +14,7 @@ namespace {
 
 template <class T>
 class ExtrapolationFlowTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(ExtrapolationFlowTest, testing::Scalars);
+TYPED_TEST_SUITE(ExtrapolationFlowTest, testing::Scalars, testing::ScalarNames);
 
 // The tolerance the harness asks of a reference: 10^−(digits − 10), ten guard digits.
 template <class T>

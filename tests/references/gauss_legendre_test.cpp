@@ -10,7 +10,7 @@ namespace {
 
 template <class T>
 class GaussLegendreTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(GaussLegendreTest, testing::Scalars);
+TYPED_TEST_SUITE(GaussLegendreTest, testing::Scalars, testing::ScalarNames);
 
 // m!
 template <class T>

@@ -11,7 +11,7 @@ namespace {
 
 template <class T>
 class ReferenceFlowTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(ReferenceFlowTest, testing::Scalars);
+TYPED_TEST_SUITE(ReferenceFlowTest, testing::Scalars, testing::ScalarNames);
 
 // The tolerance the harness asks of a reference: 10^−(digits − 10), ten guard digits.
 template <class T>

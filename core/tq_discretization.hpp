@@ -1,0 +1,166 @@
+// Discretizations of TQ (psi, alpha+, alpha−) and of the Lagrangian system on
+// them (DESIGN §1.3; paper Definitions 4.1, 4.3).
+//
+// A curve segment psi(h, t, v) passes through v = (q, w) at t = 0; the
+// boundary maps are d−(v) = psi(h, α−, v) and d+(v) = psi(h, α+, v) with
+// α− = −θh, α+ = (1 − θ)h. The discrete Lagrangian L_h is a function on TQ.
+// Everything is evaluated in a scalar S (T or jets over T), so derivatives
+// with respect to v come from automatic differentiation.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/discrete_lagrangian.hpp"
+#include "core/small_linear_algebra.hpp"
+
+namespace vivv {
+
+enum class CurveFamily {
+  linear,  // psi = q + t·w
+};
+
+enum class TQLagrangianKind {
+  quadrature,  // L_h(v) = ∫_{α−}^{α+} L(psi, dpsi/dt) dt by m-point Gauss–Legendre
+  pullback,    // L_h(v) = L_d(d−(v), d+(v); h) for a Q×Q discrete Lagrangian (paper §6)
+};
+
+template <class T>
+struct TQDiscretization {
+  CurveFamily psi = CurveFamily::linear;
+  T theta = 0;  // α− = −θh, α+ = (1 − θ)h
+  TQLagrangianKind lagrangian = TQLagrangianKind::quadrature;
+  std::vector<T> nodes, weights;  // Gauss–Legendre on [0, 1], weights summing to 1 (quadrature)
+  QxQDiscretization<T> qxq;       // the Q×Q discrete Lagrangian (pullback)
+  std::optional<TwinTerm<T>> twin;  // + a·h^s·(d+(v) − d−(v))
+};
+
+// A point of TQ in scalar S.
+template <class S, int n>
+struct TangentPoint {
+  Point<S, n> q, w;
+};
+
+// psi(h, t, v) and dpsi/dt: for the linear family, (q + t·w, w).
+template <class S, int n, class T>
+TangentPoint<S, n> curve_segment(const TQDiscretization<T>& d, const TangentPoint<S, n>& v, const S& t) {
+  TangentPoint<S, n> point;
+  switch (d.psi) {
+    case CurveFamily::linear:
+      for (int i = 0; i < n; ++i) {
+        point.q[i] = v.q[i] + t * v.w[i];
+        point.w[i] = v.w[i];
+      }
+      break;
+  }
+  return point;
+}
+
+// d−(v) = psi(h, α−, v).
+template <class S, int n, class T>
+Point<S, n> d_minus(const TQDiscretization<T>& d, const TangentPoint<S, n>& v, const T& h) {
+  return curve_segment<S, n>(d, v, S(-d.theta * h)).q;
+}
+
+// d+(v) = psi(h, α+, v).
+template <class S, int n, class T>
+Point<S, n> d_plus(const TQDiscretization<T>& d, const TangentPoint<S, n>& v, const T& h) {
+  return curve_segment<S, n>(d, v, S((1 - d.theta) * h)).q;
+}
+
+// The blown-up discrete Lagrangian L̂_h(v) = L_h(v)/h (paper §2.4, stage 1):
+// quadrature: Σ_i b_i L(psi(α− + c_i h), dpsi/dt(α− + c_i h));
+// pullback: L_d(d−(v), d+(v); h)/h; twin term: + a·h^(s−1)·(d+(v) − d−(v)).
+template <LagrangianSystem System, class S>
+S blown_up_lagrangian(const System& system, const TQDiscretization<typename System::Scalar>& d,
+                      const TangentPoint<S, System::dimension>& v, const typename System::Scalar& h) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  S value = S(0);
+  switch (d.lagrangian) {
+    case TQLagrangianKind::quadrature:
+      for (std::size_t i = 0; i < d.nodes.size(); ++i) {
+        T t = -d.theta * h + d.nodes[i] * h;
+        auto point = curve_segment<S, n>(d, v, S(t));
+        value += d.weights[i] * system.lagrangian(point.q, point.w);
+      }
+      break;
+    case TQLagrangianKind::pullback:
+      value = discrete_lagrangian(system, d.qxq, d_minus<S, n>(d, v, h), d_plus<S, n>(d, v, h), h) / h;
+      break;
+  }
+  if (d.twin) {
+    using std::pow;
+    T scale = pow(h, d.twin->power - 1);
+    auto minus = d_minus<S, n>(d, v, h);
+    auto plus = d_plus<S, n>(d, v, h);
+    for (int i = 0; i < n; ++i) value += scale * d.twin->a[i] * (plus[i] - minus[i]);
+  }
+  return value;
+}
+
+// The TQ discrete Legendre transforms at v (DESIGN §1.3), with N∓ = [−A⁻¹B; I]
+// spanning ker Dd∓ (A = ∂d∓/∂q, B = ∂d∓/∂w):
+//   ((Dd+ N−)/h)ᵀ P+ =  N−ᵀ ∇L̂_h(v),
+//   ((Dd− N+)/h)ᵀ P− = −N+ᵀ ∇L̂_h(v).
+template <class S, int n>
+struct TQLegendre {
+  Point<S, n> d_minus, d_plus, p_plus, p_minus;
+};
+
+template <LagrangianSystem System, class S>
+TQLegendre<S, System::dimension> tq_legendre(const System& system,
+                                             const TQDiscretization<typename System::Scalar>& d,
+                                             const TangentPoint<S, System::dimension>& v,
+                                             const typename System::Scalar& h) {
+  constexpr int n = System::dimension;
+  using J = Jet<S, 2 * n>;
+  TangentPoint<J, n> jet_v;
+  for (int i = 0; i < n; ++i) {
+    jet_v.q[i] = J::variable(v.q[i], i);
+    jet_v.w[i] = J::variable(v.w[i], n + i);
+  }
+  J lagrangian = blown_up_lagrangian(system, d, jet_v, h);
+  Point<J, n> minus = d_minus<J, n>(d, jet_v, h), plus = d_plus<J, n>(d, jet_v, h);
+  // Blocks of Dd− = [A B] and Dd+ = [C D].
+  SmallMatrix<S, n, n> a, b, c, dd;
+  std::array<S, n> gradient_q, gradient_w;
+  for (int i = 0; i < n; ++i) {
+    gradient_q[i] = lagrangian.gradient[i];
+    gradient_w[i] = lagrangian.gradient[n + i];
+    for (int j = 0; j < n; ++j) {
+      a[i][j] = minus[i].gradient[j];
+      b[i][j] = minus[i].gradient[n + j];
+      c[i][j] = plus[i].gradient[j];
+      dd[i][j] = plus[i].gradient[n + j];
+    }
+  }
+  // N− = [−A⁻¹B; I]: Dd+ N− = D − C A⁻¹B and N−ᵀ∇L̂ = ∇_w L̂ − (A⁻¹B)ᵀ ∇_q L̂.
+  auto kernel_minus = solve_columns<S, n, n>(a, b);
+  auto kernel_plus = solve_columns<S, n, n>(c, dd);
+  auto c_kernel = multiply<S, n, n, n>(c, kernel_minus);
+  auto a_kernel = multiply<S, n, n, n>(a, kernel_plus);
+  SmallMatrix<S, n, n> k_plus, k_minus;
+  std::array<S, n> rhs_plus, rhs_minus;
+  for (int i = 0; i < n; ++i) {
+    rhs_plus[i] = gradient_w[i];
+    rhs_minus[i] = -gradient_w[i];
+    for (int j = 0; j < n; ++j) {
+      k_plus[i][j] = (dd[i][j] - c_kernel[i][j]) / h;
+      k_minus[i][j] = (b[i][j] - a_kernel[i][j]) / h;
+      rhs_plus[i] -= kernel_minus[j][i] * gradient_q[j];
+      rhs_minus[i] += kernel_plus[j][i] * gradient_q[j];
+    }
+  }
+  TQLegendre<S, n> result;
+  result.p_plus = solve<S, n>(transpose<S, n, n>(k_plus), rhs_plus);
+  result.p_minus = solve<S, n>(transpose<S, n, n>(k_minus), rhs_minus);
+  for (int i = 0; i < n; ++i) {
+    result.d_minus[i] = minus[i].value;
+    result.d_plus[i] = plus[i].value;
+  }
+  return result;
+}
+
+}  // namespace vivv

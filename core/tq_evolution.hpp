@@ -1,0 +1,107 @@
+// The discrete evolution F_h: v ↦ ṽ of a TQ discretization (DESIGN §1.3,
+// paper Theorem 4.2), solved in blown-up form.
+//
+// (h, v, ṽ) is critical iff d+(v) = d−(ṽ) and P+(v) = P−(ṽ). With the unknowns
+// z = (q̃ − q)/h and w̃ (the scaled difference of the configurations), the
+// equations
+//   (d−(q + h z, w̃) − d+(v))/h = 0,   P−(q + h z, w̃) − P+(v) = 0
+// stay well conditioned as h → 0, where their solution is z = w̃ = w (F_0 is
+// the identity): Newton starts there.
+#pragma once
+
+#include <string>
+
+#include "core/newton.hpp"
+#include "core/state.hpp"
+#include "core/tq_discretization.hpp"
+
+namespace vivv {
+
+// The blown-up residual at the unknowns x = (z, w̃), in scalar S.
+template <LagrangianSystem System, class S>
+std::array<S, 2 * System::dimension> tq_residual(
+    const System& system, const TQDiscretization<typename System::Scalar>& d,
+    const State<typename System::Scalar, System::dimension>& v,
+    const TQLegendre<typename System::Scalar, System::dimension>& at_v,
+    const std::array<S, 2 * System::dimension>& x, const typename System::Scalar& h) {
+  constexpr int n = System::dimension;
+  TangentPoint<S, n> next;
+  for (int i = 0; i < n; ++i) {
+    next.q[i] = v.q[i] + h * x[i];
+    next.w[i] = x[n + i];
+  }
+  auto legendre = tq_legendre(system, d, next, h);
+  std::array<S, 2 * n> residual;
+  for (int i = 0; i < n; ++i) {
+    residual[i] = (legendre.d_minus[i] - at_v.d_plus[i]) / h;
+    residual[n + i] = legendre.p_minus[i] - at_v.p_plus[i];
+  }
+  return residual;
+}
+
+template <class T, int n>
+struct TQStep {
+  State<T, n> next;
+  SolveReport<T> report;
+};
+
+// F_h(v) by Newton on the blown-up equations from the h = 0 solution ṽ = v.
+// The report says whether it converged; callers that need the step use
+// require_converged.
+template <LagrangianSystem System>
+TQStep<typename System::Scalar, System::dimension> tq_step(
+    const System& system, const TQDiscretization<typename System::Scalar>& d,
+    const State<typename System::Scalar, System::dimension>& v, const typename System::Scalar& h,
+    const NewtonOptions& options = {}) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  constexpr int m = 2 * n;
+  using J = Jet<T, m>;
+  TangentPoint<T, n> point;
+  for (int i = 0; i < n; ++i) point.q[i] = v.q[i], point.w[i] = v.w[i];
+  auto at_v = tq_legendre(system, d, point, h);
+  Vector<T, m> x;
+  for (int i = 0; i < n; ++i) x[i] = v.w[i], x[n + i] = v.w[i];
+  // The residual rounds at ε·|q|/h (its first block divides a difference of
+  // configurations by h): z cannot be resolved below that, and q̃ = q + h z
+  // is then still at working precision.
+  Vector<T, m> rounding_scale = Vector<T, m>::Ones();
+  rounding_scale.head(n).setConstant(std::max<T>(T(1), max_norm<T, n>(v.q) / h));
+  TQStep<T, n> step;
+  step.report = newton_solve<T, m>(
+      x,
+      [&](const Vector<T, m>& at, Vector<T, m>& residual, Matrix<T, m, m>& jacobian) {
+        std::array<J, m> jet_x;
+        for (int i = 0; i < m; ++i) jet_x[i] = J::variable(at[i], i);
+        auto r = tq_residual(system, d, v, at_v, jet_x, h);
+        for (int i = 0; i < m; ++i) {
+          residual[i] = r[i].value;
+          for (int j = 0; j < m; ++j) jacobian(i, j) = r[i].gradient[j];
+        }
+      },
+      options, rounding_scale);
+  for (int i = 0; i < n; ++i) {
+    step.next.q[i] = v.q[i] + h * x[i];
+    step.next.w[i] = x[n + i];
+  }
+  return step;
+}
+
+// N steps of F_h from v; a step whose solve fails is an error naming it.
+template <LagrangianSystem System>
+std::vector<State<typename System::Scalar, System::dimension>> tq_trajectory(
+    const System& system, const TQDiscretization<typename System::Scalar>& d,
+    const State<typename System::Scalar, System::dimension>& v, const typename System::Scalar& h,
+    int steps) {
+  using T = typename System::Scalar;
+  std::vector<State<T, System::dimension>> trajectory{v};
+  for (int k = 0; k < steps; ++k) {
+    auto step = tq_step(system, d, trajectory.back(), h);
+    require_converged(step.report, "TQ step " + std::to_string(k + 1) + " of " +
+                                       std::to_string(steps) + " with h = " + to_decimal<T>(h));
+    trajectory.push_back(step.next);
+  }
+  return trajectory;
+}
+
+}  // namespace vivv
