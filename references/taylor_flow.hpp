@@ -1,0 +1,323 @@
+// The Taylor-series integrator: near-exact flows of any catalogue Lagrangian (issue 3).
+//
+// The Euler–Lagrange equations q'' = a(q, q') (core/euler_lagrange_tape.hpp)
+// are advanced by Taylor polynomials of order p whose coefficients come from
+// Taylor-mode automatic differentiation (core/taylor_expansion.hpp). Order and
+// step follow Jorba & Zou (2005, §3.2–3.3), as heyoka does: for a tolerance tol,
+//   p = ⌈−ln(tol)/2 + 1⌉,
+//   ρ = min( (s/‖y_{p−1}‖)^{1/(p−1)}, (s/‖y_p‖)^{1/p} ),   h = ρ e^{−2} e^{−0.7/(p−1)},
+// with ‖·‖ the max norm over the components of y = (q, w) and s = max(1, ‖y_0‖)
+// (absolute error control for states of norm at most 1, relative above). The
+// local error of a step is then about tol·s. The last step is shortened to end
+// exactly at the requested time; negative times run backward (h < 0).
+//
+// TaylorIntegrator works on any tape x'' = a(x, x') (the variational flow uses
+// it too); TaylorFlow is the facade for a LagrangianSystem. Dense output: a
+// TaylorTrajectory keeps the polynomial of every step, and advance_many
+// evaluates one trajectory at many times in one pass. Reports count steps,
+// order and multiply-adds. Errors (non-finite coefficients, too many steps) throw.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/euler_lagrange_tape.hpp"
+#include "core/scalar.hpp"
+#include "core/state.hpp"
+#include "core/taylor_expansion.hpp"
+#include "references/taylor_trajectory.hpp"
+
+namespace vivv {
+
+// p = ⌈−ln(tol)/2 + 1⌉, at least 2 (an integer heuristic: double suffices).
+template <class T>
+int taylor_order_for(const T& tolerance) {
+  using std::log;
+  if (!(tolerance > 0 && tolerance < 1))
+    throw std::invalid_argument("taylor_order_for: tolerance must be in (0, 1), got " +
+                                to_decimal<T>(tolerance));
+  const double minus_log = -static_cast<double>(log(tolerance));
+  return std::max(2, static_cast<int>(std::ceil(minus_log / 2 + 1)));
+}
+
+// What a Taylor integrator did (cumulative).
+struct TaylorReport {
+  long steps = 0;                // steps taken (each one expansion of order `order`)
+  int order = 0;                 // p
+  long long multiply_adds = 0;   // in the Taylor recurrences
+  int tape_operations = 0;       // nodes of the acceleration's tape, inputs and constants excluded
+};
+
+template <class T>
+class TaylorIntegrator {
+ public:
+  // The integrator of x'' = a(x, x') recorded on `tape`, at step tolerance `tolerance`.
+  TaylorIntegrator(Tape<T> tape, T tolerance)
+      : expansion_(std::move(tape)),
+        tolerance_(std::move(tolerance)),
+        order_(taylor_order_for(tolerance_)) {
+    report_.order = order_;
+    report_.tape_operations = expansion_.tape().operations();
+  }
+
+  int order() const { return order_; }
+  const T& tolerance() const { return tolerance_; }
+  // m, the dimension of x; y = (x, v) has 2m components.
+  int dimension() const { return expansion_.dimension(); }
+  TaylorReport report() const {
+    TaylorReport r = report_;
+    r.multiply_adds = expansion_.multiply_adds();
+    return r;
+  }
+  // Test-only access to the recurrences (TaylorExpansion::fault_order).
+  TaylorExpansion<T>& expansion() { return expansion_; }
+
+  // One step from y at time t, direction ±1, of length min(Jorba–Zou, |limit|); with clip false,
+  // |limit| only replaces an unbounded Jorba–Zou step (all of the last coefficients zero).
+  TaylorStep<T> step(const std::vector<T>& y, const T& t, int direction, const T& limit,
+                     bool clip = true);
+
+  // F_t(y) with an exact end time t (of either sign).
+  std::vector<T> advance(std::vector<T> y, const T& t);
+
+  // Appends steps (full Jorba–Zou steps, never shortened) until the trajectory covers t_end.
+  void extend(TaylorTrajectory<T>& trajectory, const T& t_end);
+
+  long max_steps = 10000000;
+
+ private:
+  // ρ e^{−2} e^{−0.7/(p−1)} from the current expansion; +∞ when the last two orders vanish.
+  T jorba_zou_step() const;
+
+  // result = Σ_{k=0..p} coefficient(k) τ^k by Horner, in place.
+  template <class Coefficient>
+  void horner(T& result, Coefficient coefficient, const T& tau) const {
+    result = coefficient(order_);
+    for (int k = order_ - 1; k >= 0; --k) {
+      taylor_detail::set_mul(result, result, tau);
+      taylor_detail::set_add(result, result, coefficient(k));
+    }
+  }
+
+  TaylorExpansion<T> expansion_;
+  T tolerance_;
+  int order_;
+  TaylorReport report_;
+};
+
+namespace taylor_flow_detail {
+
+// Whether |a| < |b|, without temporaries for MPFR.
+template <class T>
+bool abs_less(const T& a, const T& b) {
+  using std::abs;
+  if constexpr (is_mpfr_v<T>) {
+    return mpfr_cmpabs(a.backend().data(), b.backend().data()) < 0;
+  } else {
+    return abs(a) < abs(b);
+  }
+}
+
+// ln |x| to double accuracy, for any exponent range (MPFR: from the exponent and leading bits).
+template <class T>
+double log_abs(const T& x) {
+  using std::abs;
+  using std::log;
+  if constexpr (is_mpfr_v<T>) {
+    long exponent = 0;
+    const double mantissa = mpfr_get_d_2exp(&exponent, x.backend().data(), MPFR_RNDN);
+    return std::log(std::fabs(mantissa)) + static_cast<double>(exponent) * 0.69314718055994531;
+  } else {
+    return static_cast<double>(log(abs(x)));
+  }
+}
+
+}  // namespace taylor_flow_detail
+
+// ρ is a step-size heuristic, so it is computed from ln-norms in double: its
+// few digits cost nothing next to the recurrences (an MPFR pow per step
+// would cost as much as the whole expansion at tolerance 1e-40). The step h
+// is then a double rounded into T — any step is valid, and end times are
+// hit exactly by shortening the last step.
+template <class T>
+T TaylorIntegrator<T>::jorba_zou_step() const {
+  using boost::multiprecision::isfinite;
+  using std::isfinite;
+  using taylor_flow_detail::abs_less;
+  const int m = dimension();
+  const int p = order_;
+  const T zero = 0;
+  const T* state_norm = &zero;
+  const T* norm_last = &zero;
+  const T* norm_previous = &zero;
+  for (int i = 0; i < m; ++i) {
+    for (int part = 0; part < 2; ++part) {
+      const T& y0 = part == 0 ? expansion_.position(i, 0) : expansion_.velocity(i, 0);
+      const T& yp = part == 0 ? expansion_.position(i, p) : expansion_.velocity(i, p);
+      const T& yq = part == 0 ? expansion_.position(i, p - 1) : expansion_.velocity(i, p - 1);
+      if (!isfinite(yp) || !isfinite(yq) || !isfinite(y0))
+        throw std::runtime_error(
+            "TaylorIntegrator: non-finite Taylor coefficients (the state left the Lagrangian's "
+            "domain or its mass matrix became singular)");
+      if (abs_less(*state_norm, y0)) state_norm = &y0;
+      if (abs_less(*norm_last, yp)) norm_last = &yp;
+      if (abs_less(*norm_previous, yq)) norm_previous = &yq;
+    }
+  }
+  // ln s with s = max(1, ‖y_0‖): absolute control below norm 1, relative above.
+  const double log_scale = abs_less(*state_norm, T(1)) ? 0.0 : taylor_flow_detail::log_abs(*state_norm);
+  double log_rho = std::numeric_limits<double>::infinity();
+  if (*norm_previous != 0)
+    log_rho = std::min(log_rho, (log_scale - taylor_flow_detail::log_abs(*norm_previous)) / (p - 1));
+  if (*norm_last != 0)
+    log_rho = std::min(log_rho, (log_scale - taylor_flow_detail::log_abs(*norm_last)) / p);
+  // h = ρ e^{−2} e^{−0.7/(p−1)}.
+  const double step = std::exp(log_rho - 2 - 0.7 / (p - 1));
+  if (!(step > 0))
+    throw std::runtime_error("TaylorIntegrator: step size underflow (Taylor coefficients too large)");
+  return T(step);
+}
+
+template <class T>
+TaylorStep<T> TaylorIntegrator<T>::step(const std::vector<T>& y, const T& t, int direction,
+                                        const T& limit, bool clip) {
+  using boost::multiprecision::isfinite;
+  using std::abs;
+  using std::isfinite;
+  const int m = dimension();
+  if (static_cast<int>(y.size()) != 2 * m)
+    throw std::invalid_argument("TaylorIntegrator::step: state of the wrong size");
+  if (++report_.steps > max_steps)
+    throw std::runtime_error("TaylorIntegrator: more than " + std::to_string(max_steps) +
+                             " steps");
+  expansion_.expand(y.data(), y.data() + m, order_);
+  T length = jorba_zou_step();
+  if (clip ? !(length < abs(limit)) : !isfinite(length)) length = abs(limit);
+  if (!isfinite(length))
+    throw std::runtime_error("TaylorIntegrator: unbounded step with no end time to stop at");
+  TaylorStep<T> step;
+  step.start = t;
+  step.length = direction > 0 ? length : T(-length);
+  step.order = order_;
+  const int stride = order_ + 1;
+  step.coefficients.resize(2 * m * stride);
+  for (int i = 0; i < m; ++i) {
+    for (int k = 0; k <= order_; ++k) {
+      step.coefficients[i * stride + k] = expansion_.position(i, k);
+      step.coefficients[(m + i) * stride + k] = expansion_.velocity(i, k);
+    }
+  }
+  return step;
+}
+
+template <class T>
+std::vector<T> TaylorIntegrator<T>::advance(std::vector<T> y, const T& t) {
+  using boost::multiprecision::isfinite;
+  using std::abs;
+  using std::isfinite;
+  const int m = dimension();
+  if (static_cast<int>(y.size()) != 2 * m)
+    throw std::invalid_argument("TaylorIntegrator::advance: state of the wrong size");
+  T now = 0, length = 0;
+  while (now != t) {
+    if (++report_.steps > max_steps)
+      throw std::runtime_error("TaylorIntegrator: more than " + std::to_string(max_steps) +
+                               " steps");
+    const T remaining = t - now;
+    expansion_.expand(y.data(), y.data() + m, order_);
+    length = jorba_zou_step();
+    const bool last = !(length < abs(remaining));
+    if (last) length = remaining;
+    if (t < 0 && !last) length = -length;
+    // y ← Σ_k y_k h^k, in place (Horner).
+    for (int i = 0; i < m; ++i) {
+      horner(y[i], [&](int k) -> const T& { return expansion_.position(i, k); }, length);
+      horner(y[m + i], [&](int k) -> const T& { return expansion_.velocity(i, k); }, length);
+    }
+    now = last ? t : T(now + length);
+  }
+  return y;
+}
+
+template <class T>
+void TaylorIntegrator<T>::extend(TaylorTrajectory<T>& trajectory, const T& t_end) {
+  while (!trajectory.covers(t_end)) {
+    // Steps are never shortened, so the trajectory from a state does not depend on how far it
+    // was asked to go; the remaining span only bounds a step with vanishing coefficients.
+    T remaining = t_end - trajectory.end_time();
+    TaylorStep<T> taken = step(trajectory.end_state(), trajectory.end_time(),
+                               trajectory.direction(), remaining, false);
+    std::vector<T> end = TaylorTrajectory<T>::evaluate(taken, taken.length);
+    trajectory.append(std::move(taken), std::move(end));
+  }
+}
+
+// The Taylor flow F_t of a Lagrangian system.
+template <TapeRecordable System>
+class TaylorFlow {
+ public:
+  using T = typename System::Scalar;
+  static constexpr int n = System::dimension;
+
+  // `tolerance`: the Jorba–Zou step tolerance (local error per step about tolerance·max(1, |y|)).
+  TaylorFlow(const System& system, const T& tolerance)
+      : system_(system), integrator_(euler_lagrange_tape(system), tolerance) {}
+
+  const System& system() const { return system_; }
+  int order() const { return integrator_.order(); }
+  const T& tolerance() const { return integrator_.tolerance(); }
+  TaylorReport report() const { return integrator_.report(); }
+  TaylorIntegrator<T>& integrator() { return integrator_; }
+
+  // F_t(start), ending exactly at t (t may be negative).
+  State<T, n> advance(const State<T, n>& start, const T& t) {
+    return state_of(integrator_.advance(components(start), t));
+  }
+
+  // The dense trajectory from `start` covering [0, t_end] (or [t_end, 0]).
+  TaylorTrajectory<T> trajectory(const State<T, n>& start, const T& t_end) {
+    TaylorTrajectory<T> result(components(start), t_end >= 0 ? 1 : -1);
+    integrator_.extend(result, t_end);
+    return result;
+  }
+
+  // F_t(start) for every t of `times` (any order, either sign) from one trajectory per direction.
+  std::vector<State<T, n>> advance_many(const State<T, n>& start, const std::vector<T>& times) {
+    T latest = 0, earliest = 0;
+    for (const T& t : times) {
+      if (t > latest) latest = t;
+      if (t < earliest) earliest = t;
+    }
+    TaylorTrajectory<T> forward = trajectory(start, latest);
+    TaylorTrajectory<T> backward(components(start), -1);
+    if (earliest < 0) integrator_.extend(backward, earliest);
+    std::vector<State<T, n>> states;
+    states.reserve(times.size());
+    for (const T& t : times)
+      states.push_back(state_of(t >= 0 ? forward.state_at(t) : backward.state_at(t)));
+    return states;
+  }
+
+  // y = (q, w) as the integrator's components.
+  static std::vector<T> components(const State<T, n>& v) {
+    std::vector<T> y(2 * n);
+    for (int i = 0; i < n; ++i) y[i] = v.q[i], y[n + i] = v.w[i];
+    return y;
+  }
+  static State<T, n> state_of(const std::vector<T>& y) {
+    State<T, n> v;
+    for (int i = 0; i < n; ++i) v.q[i] = y[i], v.w[i] = y[n + i];
+    return v;
+  }
+
+ private:
+  System system_;
+  TaylorIntegrator<T> integrator_;
+};
+
+}  // namespace vivv

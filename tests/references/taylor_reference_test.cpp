@@ -1,0 +1,73 @@
+// The Taylor flow as a drop-in reference (issue 3): ReferenceFlow's interface,
+// the tolerance it claims, its cross-check, and dense output that does not
+// depend on the order of the calls.
+#include "references/taylor_reference.hpp"
+
+#include <gtest/gtest.h>
+
+#include "cases/systems.hpp"
+#include "references/closed_forms.hpp"
+#include "references/reference_flow.hpp"
+
+namespace vivv {
+namespace {
+
+TEST(TaylorReferenceTest, ClaimsItsToleranceAgainstTheClosedForm) {
+  PrecisionGuard guard(61);
+  using T = mpfr_real;
+  const T requested = pow(T(10), -50);
+  Pendulum<T> pendulum;
+  TaylorReference<Pendulum<T>> reference(pendulum, requested);
+  EXPECT_EQ(reference.tolerance(), requested);
+  State<T, 1> start;
+  start.q[0] = T(1);
+  start.w[0] = T(1) / 2;
+  std::vector<T> times;
+  for (int N : {1, 2, 5, 10, 40}) times.push_back(T(10) / N);
+  times.push_back(T(-4));
+  auto states = reference.advance_many(start, times);
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    EXPECT_TRUE((within_tolerance<T, 1>(states[i], pendulum_flow(pendulum, start, times[i]),
+                                       reference.tolerance())))
+        << "t = " << times[i];
+  }
+  EXPECT_LE(reference.estimate_error(start, T(10)), reference.tolerance());
+  EXPECT_NE(reference.method().find("Taylor"), std::string::npos);
+  EXPECT_NE(reference.cross_check().find("estimate_error"), std::string::npos);
+  EXPECT_GT(reference.report().steps, 0);
+}
+
+TEST(TaylorReferenceTest, ValueDependsOnlyOnStartAndTime) {
+  PrecisionGuard guard(61);
+  using T = mpfr_real;
+  PaperExample<T> paper;
+  State<T, 1> start;
+  start.q[0] = T(7) / 10;
+  start.w[0] = T(-3) / 10;
+  TaylorReference<PaperExample<T>> long_first(paper, pow(T(10), -50));
+  TaylorReference<PaperExample<T>> short_first(paper, pow(T(10), -50));
+  State<T, 1> a_long = long_first.advance(start, T(10));
+  State<T, 1> a_short = long_first.advance(start, T(1) / 3);
+  State<T, 1> b_short = short_first.advance(start, T(1) / 3);
+  State<T, 1> b_long = short_first.advance(start, T(10));
+  EXPECT_EQ(a_short.q[0], b_short.q[0]);
+  EXPECT_EQ(a_short.w[0], b_short.w[0]);
+  EXPECT_EQ(a_long.q[0], b_long.q[0]);
+  EXPECT_EQ(a_long.w[0], b_long.w[0]);
+  // Copies share the cached trajectories, as ReferenceFlow's copies share nothing but are equal.
+  TaylorReference<PaperExample<T>> copy = long_first;
+  EXPECT_EQ(copy.advance(start, T(10)).q[0], a_long.q[0]);
+  // And it agrees with the Gragg–Bulirsch–Stoer stop-gap to the latter's tolerance.
+  ReferenceFlow<PaperExample<T>> stop_gap(paper, pow(T(10), -40));
+  EXPECT_TRUE((within_tolerance<T, 1>(a_long, stop_gap.advance(start, T(10)), stop_gap.tolerance())));
+}
+
+TEST(TaylorReferenceTest, ToleranceBelowTheFloorIsRaisedAndSaidSo) {
+  using T = quad;
+  TaylorReference<HarmonicOscillator<T>> reference(HarmonicOscillator<T>{}, pow(T(10), -40));
+  EXPECT_EQ(reference.tolerance(), TaylorReference<HarmonicOscillator<T>>::floor());
+  EXPECT_NE(reference.method().find("requested"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace vivv
