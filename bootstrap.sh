@@ -10,7 +10,9 @@ case "$mode" in run|test) ;; *) echo "usage: bash bootstrap.sh run|test" >&2; ex
 
 # Debian packages vivv builds and tests with (DESIGN §2; nothing else, nothing downloaded).
 packages=(g++ cmake make libeigen3-dev libboost-dev libmpfr-dev libgmp-dev nlohmann-json3-dev
-          libgtest-dev libbenchmark-dev)
+          libgtest-dev libbenchmark-dev python3-jsonschema)
+# The "browser" tests render report.html in headless Chromium: only needed to test.
+if [ "$mode" = test ]; then packages+=(chromium); fi
 missing=()
 for package in "${packages[@]}"; do
   dpkg -s "$package" >/dev/null 2>&1 || missing+=("$package")

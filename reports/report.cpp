@@ -5,8 +5,12 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <map>
 #include <sstream>
 #include <stdexcept>
+
+#include "reports/html_report.hpp"
+#include "reports/junit_report.hpp"
 
 namespace vivv {
 
@@ -16,9 +20,10 @@ namespace {
 nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); }
 
 nlohmann::json series_json(const Series& series) {
-  nlohmann::json out = {{"label", series.label}, {"h", series.h}, {"error", series.error},
-                        {"floor", series.floor}};
-  out["predicted_order"] = series.predicted_order ? nlohmann::json(*series.predicted_order) : nlohmann::json();
+  nlohmann::json out = {
+      {"label", series.label}, {"h", series.h}, {"error", series.error}, {"floor", series.floor}};
+  out["predicted_order"] =
+      series.predicted_order ? nlohmann::json(*series.predicted_order) : nlohmann::json();
   out["exact_order"] = series.exact_order;
   out["holds"] = series.holds ? nlohmann::json(*series.holds) : nlohmann::json();
   out["explanation"] = series.explanation;
@@ -33,7 +38,8 @@ nlohmann::json series_json(const Series& series) {
     for (double p : fit.pairwise_orders) pairwise.push_back(number(p));
     out["pairwise_orders"] = pairwise;
     nlohmann::json dropped = nlohmann::json::array();
-    for (const auto& [index, reason] : fit.dropped) dropped.push_back({{"index", index}, {"reason", reason}});
+    for (const auto& [index, reason] : fit.dropped)
+      dropped.push_back({{"index", index}, {"reason", reason}});
     out["fit_points"] = {{"used", fit.used}, {"dropped", dropped}};
     if (!fit.ok) out["fit_failure"] = fit.reason;
   }
@@ -95,15 +101,103 @@ nlohmann::json case_json(const CaseResult& result) {
 nlohmann::json verdict_counts(const nlohmann::json& cases) {
   nlohmann::json counts = {{"pass", 0}, {"fail", 0}, {"error", 0}};
   for (const auto& c : cases)
-    for (const auto& claim : c["claims"]) counts[claim["verdict"].get<std::string>()] = counts[claim["verdict"].get<std::string>()].get<int>() + 1;
+    for (const auto& claim : c["claims"])
+      counts[claim["verdict"].get<std::string>()] =
+          counts[claim["verdict"].get<std::string>()].get<int>() + 1;
   return counts;
 }
 
-nlohmann::json assemble_report(const std::vector<nlohmann::json>& cases, const RunInfo& run) {
+namespace {
+
+nlohmann::json run_block(const RunInfo& run) {
+  return {{"command_line", run.command_line},
+          {"versions", run.versions},
+          {"case_seconds", nlohmann::json::object()}};
+}
+
+}  // namespace
+
+nlohmann::json assemble_report(std::vector<nlohmann::json> cases, const RunInfo& run) {
+  nlohmann::json run_json = run_block(run);
+  for (auto& c : cases) {
+    if (c.contains("seconds")) {
+      run_json["case_seconds"][c["name"].get<std::string>()] = c["seconds"];
+      c.erase("seconds");
+    }
+  }
   return {{"schema", report_schema},
-          {"run", {{"command_line", run.command_line}, {"versions", run.versions}}},
+          {"run", run_json},
           {"summary", verdict_counts(cases)},
           {"cases", cases}};
+}
+
+nlohmann::json merge_reports(const std::vector<std::pair<std::string, nlohmann::json>>& inputs,
+                             const RunInfo& run) {
+  nlohmann::json run_json = run_block(run);
+  run_json["merged_from"] = nlohmann::json::array();
+  nlohmann::json cases = nlohmann::json::array();
+  std::map<std::string, std::string> seen;  // case name -> report it came from
+  for (const auto& [file, report] : inputs) {
+    if (!report.is_object() || report.value("schema", "") != report_schema)
+      throw ReportError(
+          file + ": schema: expected \"" + report_schema + "\", got " +
+          (report.is_object() && report.contains("schema") ? report["schema"].dump() : "none"));
+    for (const auto& c : report.at("cases")) {
+      std::string name = c.at("name");
+      auto [it, fresh] = seen.emplace(name, file);
+      if (!fresh)
+        throw ReportError(file + ": cases: the case '" + name + "' is also in " + it->second);
+      cases.push_back(c);
+    }
+    const nlohmann::json& source_run = report.at("run");
+    const nlohmann::json case_seconds = source_run.value("case_seconds", nlohmann::json::object());
+    for (const auto& [name, seconds] : case_seconds.items())
+      run_json["case_seconds"][name] = seconds;
+    run_json["merged_from"].push_back({{"report", file}, {"run", source_run}});
+  }
+  return {{"schema", report_schema},
+          {"run", run_json},
+          {"summary", verdict_counts(cases)},
+          {"cases", cases}};
+}
+
+nlohmann::json read_report(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw ReportError(path + ": cannot open");
+  nlohmann::json report;
+  try {
+    report = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& error) {
+    throw ReportError(path + ": not JSON (" + error.what() + ")");
+  }
+  if (!report.is_object() || !report.contains("schema") || report["schema"] != report_schema)
+    throw ReportError(
+        path + ": schema: expected \"" + std::string(report_schema) + "\", got " +
+        (report.is_object() && report.contains("schema") ? report["schema"].dump() : "none"));
+  if (!report.contains("cases") || !report["cases"].is_array() || !report.contains("run"))
+    throw ReportError(path + ": expected the fields \"cases\" (a list) and \"run\"");
+  return report;
+}
+
+std::vector<std::string> write_report_directory(const std::string& directory,
+                                                const nlohmann::json& report) {
+  namespace fs = std::filesystem;
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"report.json", report.dump(2) + "\n"},
+      {"report.html", render_html(report)},
+      {"junit.xml", render_junit(report)}};
+  fs::create_directories(directory);
+  std::vector<std::string> paths;
+  // Every temporary first, then the renames: a write error leaves no final file changed.
+  for (const auto& [name, content] : files) {
+    paths.push_back((fs::path(directory) / name).string());
+    std::ofstream out(paths.back() + ".partial", std::ios::binary | std::ios::trunc);
+    out << content;
+    out.flush();
+    if (!out) throw ReportError("cannot write " + paths.back() + ".partial");
+  }
+  for (const auto& path : paths) fs::rename(path + ".partial", path);
+  return paths;
 }
 
 void write_atomically(const std::string& path, const std::string& content) {
@@ -142,9 +236,9 @@ void print_claims_table(std::ostream& out, const nlohmann::json& report) {
     widths[3] = std::max(widths[3], row.observed.size());
   }
   for (const auto& row : rows) {
-    out << std::left << std::setw(widths[0] + 2) << row.name << std::setw(widths[1] + 2) << row.claim
-        << std::setw(widths[2] + 2) << row.verdict << std::right << std::setw(widths[3]) << row.observed
-        << "  " << row.predicted << "\n";
+    out << std::left << std::setw(widths[0] + 2) << row.name << std::setw(widths[1] + 2)
+        << row.claim << std::setw(widths[2] + 2) << row.verdict << std::right
+        << std::setw(widths[3]) << row.observed << "  " << row.predicted << "\n";
   }
   const auto& summary = report["summary"];
   out << "claims: " << summary["pass"] << " pass, " << summary["fail"] << " fail, "

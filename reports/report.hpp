@@ -1,25 +1,52 @@
-// The report model and its renderers: report.json (schema "vivv-report/1",
-// documented in reports/SCHEMA.md) and the console claims table.
+// The report model and its renderers: report.json (schema "vivv-report/2",
+// documented in reports/SCHEMA.md and reports/schema.json), the console claims
+// table, and the report directory (report.json, report.html, junit.xml).
 #pragma once
 
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "harness/run_case.hpp"
 
 namespace vivv {
 
-inline constexpr const char* report_schema = "vivv-report/1";
+inline constexpr const char* report_schema = "vivv-report/2";
 
 struct RunInfo {
   std::string command_line;
   std::string versions;
 };
 
-// The whole report: schema, a "run" metadata block, the verdict summary and the cases.
-nlohmann::json assemble_report(const std::vector<nlohmann::json>& cases, const RunInfo& run);
+// A report that cannot be read, merged or written: bad input (exit 2).
+struct ReportError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// The whole report: schema, the verdict summary, the cases and one "run"
+// block holding everything that may differ between two runs of the same input
+// (command line, versions, wall times). Each case's "seconds" moves into
+// run.case_seconds, so the rest is a function of the input and the precision.
+nlohmann::json assemble_report(std::vector<nlohmann::json> cases, const RunInfo& run);
+
+// The cases of several reports in one (`vivv report a.json b.json`): each input
+// is (file name, report). Throws ReportError on a schema other than
+// report_schema or a case name that occurs twice. The run block records each
+// input's own run block under "merged_from".
+nlohmann::json merge_reports(const std::vector<std::pair<std::string, nlohmann::json>>& inputs,
+                             const RunInfo& run);
+
+// Reads a report.json; ReportError if it is not JSON or not of report_schema.
+nlohmann::json read_report(const std::string& path);
+
+// Writes DIR/report.json, DIR/report.html and DIR/junit.xml: all rendered
+// first, then each written atomically, so a failure leaves none half-written.
+// Returns the three paths.
+std::vector<std::string> write_report_directory(const std::string& directory,
+                                                const nlohmann::json& report);
 
 // One case as JSON; worker processes send their case in this form.
 nlohmann::json case_json(const CaseResult& result);

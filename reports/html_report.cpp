@@ -1,0 +1,761 @@
+#include "reports/html_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "reports/report_text.hpp"
+
+namespace vivv {
+
+namespace {
+
+using nlohmann::json;
+
+const char* const page_style = R"css(
+:root { --ink: #1d2430; --muted: #5b6576; --rule: #d8dde6; --panel: #f6f8fb;
+        --pass: #11612b; --pass-bg: #dcf3e2; --fail: #a40e26; --fail-bg: #fde2e5;
+        --error: #8a4b00; --error-bg: #fff0d1; }
+* { box-sizing: border-box; }
+body { margin: 0; color: var(--ink); background: #fff;
+       font: 14px/1.45 system-ui, -apple-system, "Segoe UI", "DejaVu Sans", Arial, sans-serif; }
+main { max-width: 1240px; margin: 0 auto; padding: 20px 28px 60px; }
+h1 { font-size: 24px; margin: 0 0 4px; }
+h2 { font-size: 19px; margin: 36px 0 8px; padding-top: 10px; border-top: 2px solid var(--ink); }
+h3 { font-size: 16px; margin: 0 0 6px; display: flex; gap: 10px; align-items: center; flex-wrap: wrap; }
+a { color: #0b4f8a; text-decoration: none; } a:hover { text-decoration: underline; }
+code, pre, .mono { font-family: "DejaVu Sans Mono", Menlo, Consolas, monospace; font-size: 12.5px; }
+pre { background: var(--panel); padding: 8px 10px; overflow-x: auto; border-radius: 4px; }
+.lede { color: var(--muted); margin: 0 0 14px; }
+.summary { display: flex; gap: 10px; margin: 10px 0 16px; flex-wrap: wrap; }
+.verdict { display: inline-block; padding: 1px 8px; border-radius: 10px; font-weight: 700;
+           font-size: 12.5px; letter-spacing: .02em; white-space: nowrap; border: 1px solid; }
+.v-pass { color: var(--pass); background: var(--pass-bg); border-color: #9ad2ab; }
+.v-fail { color: var(--fail); background: var(--fail-bg); border-color: #f2a3ad; }
+.v-error { color: var(--error); background: var(--error-bg); border-color: #f0c36b; }
+.summary .verdict { font-size: 15px; padding: 4px 14px; }
+table { border-collapse: collapse; }
+table.findings { width: 100%; font-size: 13px; }
+table.findings th, table.findings td { border-bottom: 1px solid var(--rule); padding: 5px 7px;
+                                       vertical-align: top; text-align: left; }
+table.findings th { background: var(--ink); color: #fff; font-weight: 600; position: sticky; top: 0; }
+table.findings tr.row-fail td { background: #fff5f6; }
+table.findings tr.row-error td { background: #fffaf0; }
+table.findings { table-layout: fixed; }
+table.findings td.case { font-weight: 600; word-break: break-word; background: #fff !important;
+                         border-right: 1px solid var(--rule); }
+table.findings tr.first td { border-top: 2px solid #9aa4b5; }
+table.findings td .small { font-size: 11.5px; line-height: 1.35; }
+table.findings td.num { font-variant-numeric: tabular-nums; }
+.small { color: var(--muted); font-size: 12px; }
+.facts { display: grid; grid-template-columns: max-content 1fr; gap: 2px 14px; margin: 6px 0 10px;
+         font-size: 13px; }
+.facts dt { color: var(--muted); } .facts dd { margin: 0; }
+.claim { border: 1px solid var(--rule); border-left: 5px solid var(--pass); border-radius: 6px;
+         padding: 12px 14px; margin: 14px 0; background: #fff; }
+.claim.fail { border-left-color: var(--fail); } .claim.error { border-left-color: var(--error); }
+.claim-body { display: grid; grid-template-columns: 660px 1fr; gap: 16px; align-items: start; }
+@media (max-width: 1100px) { .claim-body { grid-template-columns: 1fr; } }
+svg.plot { background: #fff; border: 1px solid var(--rule); border-radius: 4px; max-width: 100%; height: auto; }
+svg.plot text { font-size: 12px; fill: var(--ink); }
+svg.plot .tick text { fill: var(--muted); font-size: 11px; }
+table.series, table.kv, table.points { font-size: 12.5px; margin: 4px 0 8px; }
+table.series { width: 100%; }
+table.series th, table.series td, table.kv th, table.kv td, table.points th, table.points td {
+  border: 1px solid var(--rule); padding: 3px 6px; text-align: left; vertical-align: top; }
+table.series th, table.points th, table.kv th { background: var(--panel); font-weight: 600; }
+.swatch { display: inline-block; width: 12px; height: 12px; border-radius: 50%; margin-right: 5px;
+          vertical-align: -1px; }
+details { margin: 6px 0; } summary { cursor: pointer; color: #0b4f8a; }
+.note { color: var(--muted); font-size: 12px; margin: 2px 0 6px; }
+span.num[title] { border-bottom: 1px dotted #98a2b3; cursor: help; }
+)css";
+
+const std::vector<std::string> series_colors = {"#1565c0", "#e07b00", "#7b1fa2",
+                                                "#00897b", "#6d4c41", "#c2185b"};
+
+std::string text_of(const json& object, const char* key) {
+  return object.is_object() && object.contains(key) && object[key].is_string()
+             ? object[key].get<std::string>()
+             : "";
+}
+
+std::string escape(const std::string& text) { return xml_escape(text); }
+
+// A decimal string shortened, with the full value as a tooltip.
+std::string decimal_html(const std::string& decimal) {
+  std::string shown = short_decimal(decimal);
+  if (shown == decimal) return escape(decimal);
+  return "<span class=\"num\" title=\"" + escape(decimal) + "\">" + escape(shown) + "</span>";
+}
+
+std::string verdict_badge(const std::string& verdict) {
+  std::string mark = verdict == "pass"   ? "&#10003; pass"
+                     : verdict == "fail" ? "&#10007; FAIL"
+                                         : "&#9888; ERROR";
+  return "<span class=\"verdict v-" + escape(verdict) + "\" data-verdict=\"" + escape(verdict) +
+         "\">" + mark + "</span>";
+}
+
+std::string order_html(const json& value, int digits = 4) {
+  return value.is_number() ? format_number(value.get<double>(), digits) : "&#8212;";
+}
+
+// "≥ 2" for a lower bound, "= 2 (exact)" for an exact order, "—" for none.
+std::string predicted_html(const json& claim) {
+  const json predicted = claim.value("predicted_order", json());
+  if (!predicted.is_number()) return "<span class=\"small\">(no order)</span>";
+  return "order " + std::string(claim.value("exact_order", false) ? "= " : "&#8805; ") +
+         format_number(predicted.get<double>(), 4) +
+         (claim.value("exact_order", false) ? " <span class=\"small\">(exact)</span>" : "");
+}
+
+// The observed order with its 95% interval; for a claim without an order, the largest error.
+std::string observed_html(const json& claim) {
+  const json observed = claim.value("observed_order", json());
+  if (observed.is_number()) {
+    std::string text = "<b>" + format_number(observed.get<double>(), 4) + "</b>";
+    const json interval = claim.value("order_confidence_95", json());
+    if (interval.is_array() && interval.size() == 2 && interval[0].is_number() &&
+        interval[1].is_number())
+      text += " <span class=\"small\">[" + format_number(interval[0].get<double>(), 4) + ", " +
+              format_number(interval[1].get<double>(), 4) + "]</span>";
+    return text;
+  }
+  const json errors = claim.value("error", json::array());
+  if (errors.empty()) return "&#8212;";
+  std::optional<double> largest;
+  std::string largest_text = "0";
+  for (const auto& e : errors) {
+    auto log = log10_decimal(e.get<std::string>());
+    if (log && (!largest || *log > *largest)) {
+      largest = log;
+      largest_text = e.get<std::string>();
+    }
+  }
+  if (!largest)
+    return "max error 0 <span class=\"small\">(all " + std::to_string(errors.size()) +
+           " exactly 0)</span>";
+  return "max error " + decimal_html(largest_text);
+}
+
+// "observed order 1.99 (95% interval [1.98, 2] from 6 points) within 2 ± 0.2: holds"
+// -> "within 2 ± 0.2: holds": the comparison, without the numbers the row already shows.
+std::string comparison_part(const std::string& explanation) {
+  if (explanation.rfind("observed order", 0) != 0) return explanation;
+  std::size_t close = explanation.find(") ");
+  std::string comparison = close == std::string::npos ? explanation : explanation.substr(close + 2);
+  if (comparison.rfind(">= ", 0) == 0) comparison = "\u2265 " + comparison.substr(3);
+  return comparison;
+}
+
+// Why observed and predicted differ (or agree): for a failing claim its
+// explanation; for a passing one the comparison each series passed.
+std::string why_html(const json& claim) {
+  std::string explanation = text_of(claim, "explanation");
+  if (claim.value("verdict", "") == "pass" && explanation == "every prediction holds") {
+    const json series_list = claim.value("series", json::array());
+    std::string series_text;
+    for (const auto& series : series_list) {
+      std::string text = text_of(series, "explanation");
+      if (text.empty()) continue;
+      if (!series_text.empty()) series_text += "<br>";
+      if (series_list.size() > 1)
+        series_text += "<span class=\"small\">" + escape(text_of(series, "label")) + ":</span> ";
+      series_text += escape(comparison_part(text));
+    }
+    if (!series_text.empty()) return series_text;
+  }
+  return escape(explanation);
+}
+
+// Any JSON value as HTML: objects as key/value tables, lists of objects as
+// tables, decimal strings shortened with the full value as a tooltip.
+std::string value_html(const json& value) {
+  if (value.is_string()) {
+    const std::string text = value.get<std::string>();
+    return is_decimal(text) ? decimal_html(text) : escape(text);
+  }
+  if (value.is_boolean()) return value.get<bool>() ? "&#10003; true" : "&#10007; false";
+  if (value.is_null()) return "&#8212;";
+  if (value.is_number_float())
+    return "<span class=\"num\" title=\"" + value.dump() + "\">" +
+           format_number(value.get<double>(), 6) + "</span>";
+  if (value.is_number()) return value.dump();
+  if (value.is_object()) {
+    if (value.empty()) return "<span class=\"small\">(none)</span>";
+    std::string out = "<table class=\"kv\">";
+    for (const auto& [key, item] : value.items())
+      out += "<tr><th>" + escape(key) + "</th><td>" + value_html(item) + "</td></tr>";
+    return out + "</table>";
+  }
+  // An array.
+  bool all_objects =
+      !value.empty() &&
+      std::all_of(value.begin(), value.end(), [](const json& item) { return item.is_object(); });
+  if (all_objects) {
+    std::vector<std::string> columns;
+    for (const auto& item : value)
+      for (const auto& [key, unused] : item.items())
+        if (std::find(columns.begin(), columns.end(), key) == columns.end()) columns.push_back(key);
+    std::string out = "<table class=\"points\"><tr>";
+    for (const auto& column : columns) out += "<th>" + escape(column) + "</th>";
+    out += "</tr>";
+    for (const auto& item : value) {
+      out += "<tr>";
+      for (const auto& column : columns)
+        out += "<td>" + (item.contains(column) ? value_html(item[column]) : "") + "</td>";
+      out += "</tr>";
+    }
+    return out + "</table>";
+  }
+  std::string out;
+  for (std::size_t i = 0; i < value.size(); ++i) out += (i ? ", " : "") + value_html(value[i]);
+  return "[" + out + "]";
+}
+
+// --- The log-log plot ------------------------------------------------------
+
+struct PlotPoint {
+  int index = 0;
+  double x = 0;             // log10 h
+  std::optional<double> y;  // log10 e; empty for e = 0
+  std::string h, error;     // the decimal strings
+  std::string status;       // used, dropped, zero, measured
+  std::string reason;       // why dropped
+};
+
+struct PlotSeries {
+  std::string label, color;
+  std::vector<PlotPoint> points;
+  std::optional<double> order, log10_constant, predicted;
+  bool exact = false;
+  std::optional<bool> holds;
+  std::string fit_failure;
+};
+
+PlotSeries plot_series(const json& series, const std::string& color) {
+  PlotSeries out;
+  out.label = text_of(series, "label");
+  out.color = color;
+  std::set<int> used;
+  std::map<int, std::string> dropped;
+  bool has_fit = series.contains("fit_points") && series["fit_points"].is_object();
+  if (has_fit) {
+    for (const auto& i : series["fit_points"].value("used", json::array()))
+      used.insert(i.get<int>());
+    for (const auto& d : series["fit_points"].value("dropped", json::array()))
+      dropped[d.value("index", -1)] = text_of(d, "reason");
+  }
+  const json h = series.value("h", json::array()), error = series.value("error", json::array());
+  for (std::size_t i = 0; i < h.size() && i < error.size(); ++i) {
+    PlotPoint point;
+    point.index = static_cast<int>(i);
+    point.h = h[i].get<std::string>();
+    point.error = error[i].get<std::string>();
+    auto x = log10_decimal(point.h);
+    if (!x) continue;  // a non-positive step cannot be placed on a log axis
+    point.x = *x;
+    point.y = log10_decimal(point.error);
+    if (!point.y) {
+      point.status = "zero";
+      point.reason = dropped.count(point.index) ? dropped[point.index] : "";
+    } else if (!has_fit || (!used.count(point.index) && !dropped.count(point.index))) {
+      point.status = "measured";
+    } else if (used.count(point.index)) {
+      point.status = "used";
+    } else {
+      point.status = "dropped";
+      point.reason = dropped[point.index];
+    }
+    out.points.push_back(point);
+  }
+  const json order = series.value("observed_order", json());
+  const json constant = series.value("error_constant_log", json());
+  if (order.is_number() && constant.is_number()) {
+    out.order = order.get<double>();
+    out.log10_constant = constant.get<double>() / std::log(10.0);
+  }
+  if (series.value("predicted_order", json()).is_number())
+    out.predicted = series["predicted_order"].get<double>();
+  out.exact = series.value("exact_order", false);
+  if (series.value("holds", json()).is_boolean()) out.holds = series["holds"].get<bool>();
+  out.fit_failure = text_of(series, "fit_failure");
+  return out;
+}
+
+// Tick positions (log10) over [low, high]: decades, thinned to at most ~7,
+// with 2 and 5 multiples added when fewer than two decades fall in range.
+std::vector<std::pair<double, std::string>> log_ticks(double low, double high) {
+  std::vector<std::pair<double, std::string>> ticks;
+  int step = std::max(1, static_cast<int>(std::ceil((high - low) / 7)));
+  for (int d = static_cast<int>(std::ceil(low / step)) * step; d <= high; d += step)
+    ticks.push_back({d, "10<tspan dy=\"-5\" font-size=\"9\">" + std::to_string(d) + "</tspan>"});
+  if (ticks.size() < 2) {
+    for (int d = static_cast<int>(std::floor(low)); d <= std::ceil(high); ++d)
+      for (int k : {2, 5}) {
+        double x = d + std::log10(static_cast<double>(k));
+        if (x >= low && x <= high)
+          ticks.push_back({x, std::to_string(k) + "&#183;10<tspan dy=\"-5\" font-size=\"9\">" +
+                                  std::to_string(d) + "</tspan>"});
+      }
+  }
+  return ticks;
+}
+
+std::string identifier(const std::string& text) {
+  std::string out;
+  for (char c : text) out += std::isalnum(static_cast<unsigned char>(c)) ? c : '-';
+  return out;
+}
+
+std::string fixed(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.1f", x);
+  return buffer;
+}
+
+}  // namespace
+
+std::string render_claim_plot(const json& claim, const std::string& key) {
+  std::vector<PlotSeries> all;
+  const json series_list = claim.value("series", json::array());
+  for (std::size_t i = 0; i < series_list.size(); ++i)
+    all.push_back(plot_series(series_list[i], series_colors[i % series_colors.size()]));
+
+  // Ranges in log10.
+  std::optional<double> x_low, x_high, y_low, y_high;
+  bool any_zero = false;
+  for (const auto& s : all)
+    for (const auto& p : s.points) {
+      x_low = std::min(x_low.value_or(p.x), p.x);
+      x_high = std::max(x_high.value_or(p.x), p.x);
+      if (p.y) {
+        y_low = std::min(y_low.value_or(*p.y), *p.y);
+        y_high = std::max(y_high.value_or(*p.y), *p.y);
+      } else {
+        any_zero = true;
+      }
+    }
+  // NaN when the main series states no floor (a plain double: GCC misreads optional here).
+  double floor_log = NAN;
+  if (!series_list.empty())
+    if (auto log = log10_decimal(text_of(series_list[0], "floor"))) floor_log = *log;
+  if (!x_low) {
+    x_low = -2;
+    x_high = -1;
+  }
+  if (!y_low) {  // every error is exactly zero: centre the axis on the stated floor
+    double centre = std::isfinite(floor_log) ? floor_log : -30;
+    y_low = centre - 2;
+    y_high = centre + 1;
+  }
+  auto widen = [](std::optional<double>& low, std::optional<double>& high, double minimum_span,
+                  double padding) {
+    double span = *high - *low;
+    if (span < minimum_span) {
+      double middle = (*high + *low) / 2;
+      *low = middle - minimum_span / 2;
+      *high = middle + minimum_span / 2;
+      span = minimum_span;
+    }
+    *low -= padding * span;
+    *high += padding * span;
+  };
+  widen(x_low, x_high, 0.6, 0.06);
+  widen(y_low, y_high, 1.0, 0.08);
+
+  // Geometry: plot area, then the zero band below it, axis labels and legend.
+  const double width = 640, left = 72, right = width - 24, top = 14, plot_bottom = 264;
+  const double zero_band = any_zero ? 26 : 0, axis_bottom = plot_bottom + zero_band;
+  std::size_t legend_rows = all.size() + 2;
+  const double legend_top = axis_bottom + 50, height = legend_top + 18.0 * legend_rows + 6;
+  auto px = [&](double x) { return left + (x - *x_low) / (*x_high - *x_low) * (right - left); };
+  auto py = [&](double y) {
+    return plot_bottom - (y - *y_low) / (*y_high - *y_low) * (plot_bottom - top);
+  };
+  const double zero_y = plot_bottom + zero_band / 2 + 2;
+  const std::string clip = "clip-" + identifier(key);
+
+  std::ostringstream svg;
+  svg << "<svg class=\"plot\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width
+      << "\" height=\"" << fixed(height) << "\" viewBox=\"0 0 " << width << " " << fixed(height)
+      << "\" data-claim-plot=\"" << escape(key) << "\" data-series=\"" << all.size()
+      << "\" role=\"img\" aria-label=\"log-log plot of the error against h for " << escape(key)
+      << "\">\n";
+  svg << "<title>" << escape(key) << ": error against h (log-log)</title>\n";
+  svg << "<defs><clipPath id=\"" << clip << "\"><rect x=\"" << left << "\" y=\"" << top
+      << "\" width=\"" << right - left << "\" height=\"" << plot_bottom - top
+      << "\"/></clipPath></defs>\n";
+  svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << right - left << "\" height=\""
+      << axis_bottom - top << "\" fill=\"#fbfcfe\" stroke=\"#c5ccd8\"/>\n";
+  // Grid and ticks.
+  svg << "<g class=\"tick\">\n";
+  for (const auto& [x, label] : log_ticks(*x_low, *x_high)) {
+    svg << "<line x1=\"" << fixed(px(x)) << "\" y1=\"" << top << "\" x2=\"" << fixed(px(x))
+        << "\" y2=\"" << axis_bottom << "\" stroke=\"#e3e7ee\"/>";
+    svg << "<text x=\"" << fixed(px(x)) << "\" y=\"" << axis_bottom + 17
+        << "\" text-anchor=\"middle\">" << label << "</text>\n";
+  }
+  for (const auto& [y, label] : log_ticks(*y_low, *y_high)) {
+    svg << "<line x1=\"" << left << "\" y1=\"" << fixed(py(y)) << "\" x2=\"" << right << "\" y2=\""
+        << fixed(py(y)) << "\" stroke=\"#e3e7ee\"/>";
+    svg << "<text x=\"" << left - 6 << "\" y=\"" << fixed(py(y) + 4) << "\" text-anchor=\"end\">"
+        << label << "</text>\n";
+  }
+  svg << "</g>\n";
+  svg << "<text x=\"" << (left + right) / 2 << "\" y=\"" << axis_bottom + 36
+      << "\" text-anchor=\"middle\">step h</text>\n";
+  svg << "<text transform=\"translate(16 " << (top + plot_bottom) / 2
+      << ") rotate(-90)\" text-anchor=\"middle\">error</text>\n";
+  // The stated floor of the main series, when it falls inside the plotted range.
+  if (std::isfinite(floor_log) && floor_log > *y_low && floor_log < *y_high) {
+    svg << "<g data-floor=\"1\"><line x1=\"" << left << "\" y1=\"" << fixed(py(floor_log))
+        << "\" x2=\"" << right << "\" y2=\"" << fixed(py(floor_log))
+        << "\" stroke=\"#98a2b3\" stroke-dasharray=\"2 3\"/><text x=\"" << right - 4 << "\" y=\""
+        << fixed(py(floor_log) - 4) << "\" text-anchor=\"end\" fill=\"#5b6576\">floor "
+        << escape(short_decimal(text_of(series_list[0], "floor"), 3))
+        << "</text><title>round-off / reference floor " << escape(text_of(series_list[0], "floor"))
+        << "</title></g>\n";
+  }
+  // The zero band: errors that are exactly 0 have no logarithm; they are drawn here.
+  if (any_zero) {
+    svg << "<g data-zero-band=\"1\"><title>errors that are exactly 0 have no logarithm: "
+           "they are drawn in this band at the plot floor</title><line x1=\""
+        << left << "\" y1=\"" << plot_bottom << "\" x2=\"" << right << "\" y2=\"" << plot_bottom
+        << "\" stroke=\"#5b6576\" stroke-dasharray=\"5 3\"/><text x=\"" << left - 6 << "\" y=\""
+        << fixed(zero_y + 4) << "\" text-anchor=\"end\" fill=\"#5b6576\">0</text></g>\n";
+  }
+  // Fitted lines and predicted slopes, clipped to the plot area.
+  svg << "<g clip-path=\"url(#" << clip << ")\">\n";
+  for (const auto& s : all) {
+    if (!s.order || !s.log10_constant) continue;
+    double low = 1e300, high = -1e300, sum = 0;
+    int count = 0;
+    for (const auto& p : s.points)
+      if (p.status == "used") {
+        low = std::min(low, p.x);
+        high = std::max(high, p.x);
+        sum += p.x;
+        ++count;
+      }
+    if (count == 0) continue;
+    low -= 0.08;
+    high += 0.08;
+    auto fit_y = [&](double x) { return *s.log10_constant + *s.order * x; };
+    svg << "<line data-fit=\"1\" x1=\"" << fixed(px(low)) << "\" y1=\"" << fixed(py(fit_y(low)))
+        << "\" x2=\"" << fixed(px(high)) << "\" y2=\"" << fixed(py(fit_y(high))) << "\" stroke=\""
+        << s.color << "\" stroke-width=\"2\"><title>least-squares fit: slope "
+        << format_number(*s.order, 4) << "</title></line>\n";
+    if (s.predicted) {
+      double centre = sum / count;
+      auto predicted_y = [&](double x) { return fit_y(centre) + *s.predicted * (x - centre); };
+      svg << "<line data-predicted=\"1\" x1=\"" << fixed(px(low)) << "\" y1=\""
+          << fixed(py(predicted_y(low))) << "\" x2=\"" << fixed(px(high)) << "\" y2=\""
+          << fixed(py(predicted_y(high))) << "\" stroke=\"" << s.color
+          << "\" stroke-width=\"1.2\" stroke-dasharray=\"6 4\" opacity=\"0.7\"><title>predicted "
+             "slope "
+          << format_number(*s.predicted, 4) << "</title></line>\n";
+    }
+  }
+  svg << "</g>\n";
+  // Points, each with its values and, when dropped, the reason.
+  for (const auto& s : all) {
+    svg << "<g data-series-label=\"" << escape(s.label) << "\">";
+    std::string path;
+    for (const auto& p : s.points)
+      if (p.y) path += (path.empty() ? "M" : " L") + fixed(px(p.x)) + " " + fixed(py(*p.y));
+    if (!path.empty())
+      svg << "<path d=\"" << path << "\" fill=\"none\" stroke=\"" << s.color
+          << "\" stroke-width=\"0.8\" opacity=\"0.45\"/>";
+    for (const auto& p : s.points) {
+      std::string title = escape(s.label) + " — point " + std::to_string(p.index) +
+                          ": h = " + escape(p.h) + ", error = " + escape(p.error);
+      if (p.status == "used") title += " — used in the fit";
+      if (p.status == "dropped") title += " — dropped from the fit: " + escape(p.reason);
+      if (p.status == "zero")
+        title += " — error is exactly 0, drawn at the plot floor" +
+                 (p.reason.empty() ? std::string() : " (dropped: " + escape(p.reason) + ")");
+      if (p.status == "measured") title += " — measured (no order fit)";
+      double x = px(p.x);
+      svg << "\n<g data-point=\"" << p.status << "\"><title>" << title << "</title>";
+      if (p.status == "zero") {
+        svg << "<path d=\"M" << fixed(x - 5) << " " << fixed(zero_y - 4) << " L" << fixed(x + 5)
+            << " " << fixed(zero_y - 4) << " L" << fixed(x) << " " << fixed(zero_y + 5)
+            << " Z\" fill=\"#fff\" stroke=\"" << s.color << "\" stroke-width=\"1.6\"/>";
+      } else {
+        double y = py(*p.y);
+        bool filled = p.status == "used" || p.status == "measured";
+        svg << "<circle cx=\"" << fixed(x) << "\" cy=\"" << fixed(y) << "\" r=\"4.2\" fill=\""
+            << (filled ? s.color : "#fff") << "\" stroke=\"" << s.color
+            << "\" stroke-width=\"1.6\"/>";
+        if (p.status == "dropped")
+          svg << "<line x1=\"" << fixed(x - 4) << "\" y1=\"" << fixed(y + 4) << "\" x2=\""
+              << fixed(x + 4) << "\" y2=\"" << fixed(y - 4) << "\" stroke=\"" << s.color << "\"/>";
+      }
+      svg << "</g>";
+    }
+    svg << "</g>\n";
+  }
+  // Legend: one row per series, then the key to the markers.
+  svg << "<g data-legend=\"1\">\n";
+  double row = legend_top;
+  for (const auto& s : all) {
+    svg << "<line x1=\"" << left << "\" y1=\"" << row - 4 << "\" x2=\"" << left + 22 << "\" y2=\""
+        << row - 4 << "\" stroke=\"" << s.color << "\" stroke-width=\"2\"/><circle cx=\""
+        << left + 11 << "\" cy=\"" << row - 4 << "\" r=\"4\" fill=\"" << s.color << "\"/>";
+    std::string fit = s.order
+                          ? "fitted order " + format_number(*s.order, 3)
+                          : (s.fit_failure.empty() ? "no order fit" : "no fit: " + s.fit_failure);
+    if (s.predicted)
+      fit += (s.exact ? ", predicted " : ", predicted ≥ ") + format_number(*s.predicted, 3);
+    if (s.holds) fit += *s.holds ? " — holds" : " — fails";
+    svg << "<text x=\"" << left + 30 << "\" y=\"" << row << "\">" << escape(s.label)
+        << "<tspan fill=\"#5b6576\">  " << escape(fit) << "</tspan></text>\n";
+    row += 18;
+  }
+  svg << "<g fill=\"#5b6576\"><circle cx=\"" << left + 5 << "\" cy=\"" << row - 4
+      << "\" r=\"4\" fill=\"#5b6576\"/><text x=\"" << left + 14 << "\" y=\"" << row
+      << "\">used in the fit</text><circle cx=\"" << left + 125 << "\" cy=\"" << row - 4
+      << "\" r=\"4\" fill=\"#fff\" stroke=\"#5b6576\" stroke-width=\"1.4\"/><text x=\""
+      << left + 134 << "\" y=\"" << row << "\">dropped (hover: reason)</text><path d=\"M"
+      << left + 300 << " " << row - 8 << " L" << left + 310 << " " << row - 8 << " L" << left + 305
+      << " " << row + 1 << " Z\" fill=\"#fff\" stroke=\"#5b6576\" stroke-width=\"1.4\"/><text x=\""
+      << left + 316 << "\" y=\"" << row << "\">error = 0 (at the plot floor)</text></g>\n";
+  row += 18;
+  svg << "<g fill=\"#5b6576\"><line x1=\"" << left << "\" y1=\"" << row - 4 << "\" x2=\""
+      << left + 22 << "\" y2=\"" << row - 4
+      << "\" stroke=\"#5b6576\" stroke-width=\"2\"/><text x=\"" << left + 30 << "\" y=\"" << row
+      << "\">least-squares fit over the used points</text><line x1=\"" << left + 300 << "\" y1=\""
+      << row - 4 << "\" x2=\"" << left + 322 << "\" y2=\"" << row - 4
+      << "\" stroke=\"#5b6576\" stroke-dasharray=\"6 4\"/><text x=\"" << left + 330 << "\" y=\""
+      << row << "\">predicted slope</text></g>\n";
+  svg << "</g>\n</svg>";
+  return svg.str();
+}
+
+namespace {
+
+// One claim's findings row.
+// The case cell spans the case's rows (`case_rows` > 0 on its first row, 0 on the others).
+std::string findings_row(const json& c, const json& claim, const std::string& key,
+                         const std::string& anchor, std::size_t case_rows) {
+  std::string verdict = text_of(claim, "verdict");
+  std::ostringstream row;
+  row << "<tr class=\"row-" << escape(verdict) << (case_rows ? " first" : "")
+      << "\" data-claim-row=\"" << escape(key) << "\">";
+  if (case_rows)
+    row << "<td class=\"case\" rowspan=\"" << case_rows << "\">" << escape(text_of(c, "name"))
+        << "</td>";
+  row << "<td><a href=\"#" << anchor << "\">" << escape(text_of(claim, "id")) << "</a></td>"
+      << "<td>" << escape(text_of(claim, "source")) << "</td>"
+      << "<td>" << predicted_html(claim) << "<div class=\"small\">"
+      << escape(text_of(claim, "prediction")) << "</div></td>"
+      << "<td class=\"num\">" << observed_html(claim) << "</td>"
+      << "<td>" << verdict_badge(verdict) << "</td>"
+      << "<td>" << why_html(claim) << "</td></tr>\n";
+  return row.str();
+}
+
+// Per series: label, observed and predicted order, interval, pairwise orders, verdict.
+std::string series_table(const json& claim) {
+  std::ostringstream out;
+  out << "<table class=\"series\"><tr><th>series</th><th>observed</th><th>predicted</th>"
+         "<th>pairwise orders (largest h first)</th><th>holds</th></tr>";
+  const json series_list = claim.value("series", json::array());
+  for (std::size_t i = 0; i < series_list.size(); ++i) {
+    const json& s = series_list[i];
+    out << "<tr><td><span class=\"swatch\" style=\"background:"
+        << series_colors[i % series_colors.size()] << "\"></span>" << escape(text_of(s, "label"))
+        << "</td><td class=\"mono\">" << order_html(s.value("observed_order", json()));
+    const json interval = s.value("order_confidence_95", json());
+    if (interval.is_array() && interval.size() == 2 && interval[0].is_number())
+      out << " <span class=\"small\">[" << order_html(interval[0]) << ", "
+          << order_html(interval[1]) << "]</span>";
+    out << "</td><td class=\"mono\">"
+        << (s.value("predicted_order", json()).is_number()
+                ? std::string(s.value("exact_order", false) ? "= " : "&#8805; ") +
+                      order_html(s["predicted_order"])
+                : "&#8212;")
+        << "</td><td class=\"mono\">";
+    const json pairwise = s.value("pairwise_orders", json::array());
+    for (std::size_t k = 0; k < pairwise.size(); ++k)
+      out << (k ? ", " : "") << order_html(pairwise[k], 3);
+    if (pairwise.empty()) out << "&#8212;";
+    out << "</td><td>";
+    if (s.value("holds", json()).is_boolean())
+      out << verdict_badge(s["holds"].get<bool>() ? "pass" : "fail");
+    else
+      out << "<span class=\"small\">(supporting)</span>";
+    out << "</td></tr>";
+  }
+  return out.str() + "</table>";
+}
+
+// Every point of every series: h, error, and whether it is in the fit and why not.
+std::string points_table(const json& claim) {
+  std::ostringstream out;
+  for (const auto& s : claim.value("series", json::array())) {
+    std::map<int, std::string> dropped;
+    std::set<int> used;
+    if (s.contains("fit_points")) {
+      for (const auto& d : s["fit_points"].value("dropped", json::array()))
+        dropped[d.value("index", -1)] = text_of(d, "reason");
+      for (const auto& u : s["fit_points"].value("used", json::array())) used.insert(u.get<int>());
+    }
+    out << "<div class=\"small\">" << escape(text_of(s, "label")) << "</div>"
+        << "<table class=\"points\"><tr><th>#</th><th>h</th><th>error</th><th>fit</th></tr>";
+    const json h = s.value("h", json::array()), error = s.value("error", json::array());
+    for (std::size_t i = 0; i < h.size() && i < error.size(); ++i) {
+      int index = static_cast<int>(i);
+      out << "<tr><td>" << i << "</td><td class=\"mono\">" << decimal_html(h[i])
+          << "</td><td class=\"mono\">" << decimal_html(error[i]) << "</td><td>"
+          << (used.count(index)      ? "used"
+              : dropped.count(index) ? "dropped: " + escape(dropped[index])
+                                     : std::string("&#8212;"))
+          << "</td></tr>";
+    }
+    out << "</table>";
+  }
+  return out.str();
+}
+
+std::string claim_section(const json& c, const json& claim, const std::string& key,
+                          const std::string& anchor) {
+  std::string verdict = text_of(claim, "verdict");
+  std::ostringstream out;
+  out << "<section class=\"claim " << escape(verdict) << "\" id=\"" << anchor << "\" data-claim=\""
+      << escape(key) << "\">\n<h3>" << verdict_badge(verdict) << " " << escape(text_of(claim, "id"))
+      << " <span class=\"small\">" << escape(text_of(c, "name")) << " &#183; "
+      << escape(text_of(claim, "source")) << "</span></h3>\n";
+  out << "<div class=\"claim-body\"><div>" << render_claim_plot(claim, key);
+  bool any_zero = false;
+  for (const auto& s : claim.value("series", json::array()))
+    for (const auto& e : s.value("error", json::array()))
+      any_zero = any_zero || (e.is_string() && !log10_decimal(e.get<std::string>()));
+  if (any_zero)
+    out << "<p class=\"note\">Errors that are exactly 0 have no logarithm: they are drawn on the "
+           "dashed line at the bottom of the plot (the plot floor), not at their value.</p>";
+  out << "</div><div>\n<dl class=\"facts\"><dt>prediction</dt><dd>" << predicted_html(claim)
+      << " — " << escape(text_of(claim, "prediction")) << "</dd><dt>observed</dt><dd>"
+      << observed_html(claim) << "</dd><dt>verdict</dt><dd>" << verdict_badge(verdict) << " "
+      << escape(text_of(claim, "explanation")) << "</dd></dl>\n";
+  out << series_table(claim) << "\n";
+  out << "<details><summary>points: h, error, used or dropped</summary>" << points_table(claim)
+      << "</details>\n";
+  out << "<details><summary>evidence</summary>"
+      << value_html(claim.value("evidence", json::object())) << "</details>\n";
+  out << "</div></div></section>\n";
+  return out.str();
+}
+
+std::string case_facts(const json& c) {
+  std::ostringstream out;
+  out << "<dl class=\"facts\">";
+  out << "<dt>system</dt><dd><code>" << escape(text_of(c, "system")) << "</code>";
+  const json parameters = c.value("parameters", json::object());
+  bool first = true;
+  for (const auto& [name, value] : parameters.items()) {
+    out << (first ? " " : ", ") << escape(name) << " = " << value_html(value);
+    first = false;
+  }
+  out << "</dd><dt>initial</dt><dd>q = " << value_html(c["initial"].value("q", json::array()))
+      << ", w = " << value_html(c["initial"].value("w", json::array())) << "</dd>";
+  out << "<dt>sweep</dt><dd>T = " << value_html(c.value("T", json()))
+      << ", N = " << value_html(c.value("steps", json::array())) << " (h = T/N)</dd>";
+  const json precision = c.value("precision", json::object());
+  out << "<dt>precision</dt><dd>" << escape(text_of(precision, "scalar")) << ", "
+      << value_html(precision.value("digits", json())) << " digits ("
+      << value_html(precision.value("bits", json())) << " bits); smallest fitted error "
+      << (text_of(precision, "smallest_error").empty()
+              ? "&#8212;"
+              : decimal_html(text_of(precision, "smallest_error")))
+      << ", guard " << value_html(precision.value("guard_bits", json()))
+      << " bits <span class=\"small\">(" << escape(text_of(precision, "rule")) << ")</span></dd>";
+  const json reference = c.value("reference", json::object());
+  out << "<dt>reference</dt><dd>" << escape(text_of(reference, "method")) << "; tolerance "
+      << decimal_html(text_of(reference, "tolerance"))
+      << "; cross-check at T: " << decimal_html(text_of(reference, "error_estimate_at_T"))
+      << "<div class=\"small\">" << escape(text_of(reference, "cross_check")) << "</div></dd>";
+  out << "<dt>case file</dt><dd><code>" << escape(text_of(c, "file"))
+      << "</code><details><summary>content</summary><pre>"
+      << escape(c.value("case_file", json()).dump(2)) << "</pre></details></dd>";
+  out << "</dl>";
+  return out.str();
+}
+
+}  // namespace
+
+std::string render_html(const json& report) {
+  const json& cases = report.at("cases");
+  const json& summary = report.at("summary");
+  const json& run = report.at("run");
+  int total = summary["pass"].get<int>() + summary["fail"].get<int>() + summary["error"].get<int>();
+  std::ostringstream page;
+  page << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+       << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+       << "<title>vivv report: " << summary["pass"] << " pass, " << summary["fail"] << " fail, "
+       << summary["error"] << " error</title>\n<style>" << page_style
+       << "</style>\n</head>\n<body>\n<main>\n";
+  page << "<h1>vivv verification report</h1>\n<p class=\"lede\">" << cases.size() << " cases, "
+       << total << " claims of the error analysis of variational integrators, each checked "
+       << "against a near-exact reference flow. Schema <code>" << escape(text_of(report, "schema"))
+       << "</code>.</p>\n";
+  page << "<div class=\"summary\" data-summary=\"1\"><span class=\"verdict v-pass\">&#10003; "
+       << summary["pass"] << " pass</span><span class=\"verdict v-fail\">&#10007; "
+       << summary["fail"] << " fail</span><span class=\"verdict v-error\">&#9888; "
+       << summary["error"] << " error</span></div>\n";
+
+  // Keys and anchors, in report order.
+  std::vector<std::tuple<const json*, const json*, std::string, std::string>> claims;
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    for (std::size_t k = 0; k < cases[i]["claims"].size(); ++k) {
+      const json& claim = cases[i]["claims"][k];
+      claims.emplace_back(&cases[i], &claim, text_of(cases[i], "name") + "/" + text_of(claim, "id"),
+                          "claim-" + std::to_string(i) + "-" + std::to_string(k));
+    }
+
+  page << "<h2 id=\"findings\">Findings</h2>\n<p class=\"lede\">One row per claim. Predicted "
+          "orders are the theorems' lower bounds (&#8805;) unless the case declares the exact "
+          "order (=). Observed: least-squares order with its 95% interval. Hover a shortened "
+          "number for all its digits.</p>\n";
+  page << "<table class=\"findings\"><colgroup><col style=\"width:13%\"><col style=\"width:11%\">"
+          "<col style=\"width:11%\"><col style=\"width:25%\"><col style=\"width:11%\">"
+          "<col style=\"width:7%\"><col style=\"width:22%\"></colgroup>"
+          "<thead><tr><th>case</th><th>claim</th><th>source</th>"
+          "<th>prediction</th><th>observed order</th><th>verdict</th><th>why they differ / "
+          "agree</th>"
+          "</tr></thead><tbody>\n";
+  const json* previous_case = nullptr;
+  for (const auto& [c, claim, key, anchor] : claims) {
+    page << findings_row(*c, *claim, key, anchor, c == previous_case ? 0 : (*c)["claims"].size());
+    previous_case = c;
+  }
+  page << "</tbody></table>\n";
+
+  std::size_t next = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const json& c = cases[i];
+    page << "<h2 id=\"case-" << i << "\" data-case=\"" << escape(text_of(c, "name")) << "\">"
+         << escape(text_of(c, "name"));
+    for (const auto& label : c.value("labels", json::array()))
+      page << " <span class=\"small\">[" << escape(label.get<std::string>()) << "]</span>";
+    page << "</h2>\n" << case_facts(c) << "\n";
+    for (std::size_t k = 0; k < c["claims"].size(); ++k, ++next) {
+      const auto& [unused_case, claim, key, anchor] = claims[next];
+      page << claim_section(c, *claim, key, anchor);
+    }
+  }
+
+  page << "<h2 id=\"run\">Run</h2>\n<p class=\"lede\">Everything that may differ between two "
+          "runs of the same input lives in this block (the \"run\" field of report.json).</p>\n"
+       << value_html(run) << "\n";
+  page << "</main>\n</body>\n</html>\n";
+  return page.str();
+}
+
+}  // namespace vivv

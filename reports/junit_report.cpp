@@ -1,0 +1,92 @@
+#include "reports/junit_report.hpp"
+
+#include <sstream>
+
+#include "reports/report_text.hpp"
+
+namespace vivv {
+
+namespace {
+
+std::string string_field(const nlohmann::json& object, const char* key) {
+  return object.contains(key) && object[key].is_string() ? object[key].get<std::string>() : "";
+}
+
+std::string order_text(const nlohmann::json& value) {
+  return value.is_number() ? format_number(value.get<double>(), 4) : "-";
+}
+
+}  // namespace
+
+std::string evidence_summary(const nlohmann::json& claim) {
+  std::ostringstream out;
+  out << "source: " << string_field(claim, "source") << "\n";
+  out << "prediction: " << string_field(claim, "prediction") << "\n";
+  out << "verdict: " << string_field(claim, "verdict") << " — "
+      << string_field(claim, "explanation") << "\n";
+  for (const auto& series : claim.value("series", nlohmann::json::array())) {
+    out << "series " << string_field(series, "label") << ":";
+    if (series.contains("observed_order") || series.contains("predicted_order"))
+      out << " observed order " << order_text(series.value("observed_order", nlohmann::json()))
+          << ", predicted " << order_text(series.value("predicted_order", nlohmann::json()))
+          << (series.value("exact_order", false) ? " (exact)" : "");
+    if (series.contains("fit_points")) {
+      const auto& points = series["fit_points"];
+      out << "; fit uses " << points.value("used", nlohmann::json::array()).size() << " of "
+          << series.value("h", nlohmann::json::array()).size() << " points";
+      for (const auto& dropped : points.value("dropped", nlohmann::json::array()))
+        out << "; point " << dropped.value("index", -1)
+            << " dropped: " << string_field(dropped, "reason");
+    }
+    out << "\n  h:";
+    for (const auto& h : series.value("h", nlohmann::json::array())) out << " " << short_decimal(h);
+    out << "\n  error:";
+    for (const auto& e : series.value("error", nlohmann::json::array()))
+      out << " " << short_decimal(e);
+    out << "\n";
+    if (!string_field(series, "explanation").empty())
+      out << "  " << string_field(series, "explanation") << "\n";
+  }
+  return out.str();
+}
+
+std::string render_junit(const nlohmann::json& report) {
+  const auto& summary = report["summary"];
+  int total = summary["pass"].get<int>() + summary["fail"].get<int>() + summary["error"].get<int>();
+  const nlohmann::json seconds = report["run"].value("case_seconds", nlohmann::json::object());
+  std::ostringstream out;
+  out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  out << "<testsuites name=\"vivv\" tests=\"" << total << "\" failures=\"" << summary["fail"]
+      << "\" errors=\"" << summary["error"] << "\">\n";
+  for (const auto& c : report["cases"]) {
+    std::string name = c["name"];
+    int failures = 0, errors = 0;
+    for (const auto& claim : c["claims"]) {
+      failures += claim["verdict"] == "fail";
+      errors += claim["verdict"] == "error";
+    }
+    out << "  <testsuite name=\"" << xml_escape(name) << "\" tests=\"" << c["claims"].size()
+        << "\" failures=\"" << failures << "\" errors=\"" << errors << "\"";
+    if (seconds.contains(name) && seconds[name].is_number())
+      out << " time=\"" << format_number(seconds[name].get<double>(), 6) << "\"";
+    out << ">\n";
+    for (const auto& claim : c["claims"]) {
+      std::string verdict = claim["verdict"], summary_text = evidence_summary(claim);
+      out << "    <testcase classname=\"" << xml_escape(name) << "\" name=\""
+          << xml_escape(claim["id"].get<std::string>()) << "\">\n";
+      if (verdict == "fail" || verdict == "error") {
+        const char* element = verdict == "fail" ? "failure" : "error";
+        out << "      <" << element << " type=\"" << verdict << "\" message=\""
+            << xml_escape(string_field(claim, "explanation")) << "\">" << xml_escape(summary_text)
+            << "</" << element << ">\n";
+      }
+      out << "      <system-out>" << xml_escape(summary_text) << "</system-out>\n";
+      out << "    </testcase>\n";
+    }
+    out << "  </testsuite>\n";
+  }
+  out << "</testsuites>\n";
+  return out.str();
+}
+
+}  // namespace vivv

@@ -1,0 +1,95 @@
+#!/usr/bin/env python3
+"""Renders a report.html in headless Chromium and checks the rendered DOM.
+
+    check_report_in_browser.py CHROMIUM REPORT_DIR SCREENSHOT.png
+
+REPORT_DIR holds report.json and report.html. From Chromium's --dump-dom
+(the DOM after layout, not the file as written) it checks that every claim of
+report.json has exactly one findings row (data-claim-row) and one plot
+(data-claim-plot, an <svg> with plotted points), that every verdict is shown,
+and that the page loads nothing from the network. It then saves a screenshot
+of the top of the page. Exit 0 on success, 1 on a failed check, 77 (ctest's
+skip code here) when CHROMIUM is not installed.
+"""
+import html
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+from collections import Counter
+
+FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+         "--disable-background-networking", "--disable-component-update", "--disable-sync"]
+
+
+def chromium(binary, arguments):
+    with tempfile.TemporaryDirectory(prefix="vivv-chromium-") as profile:
+        result = subprocess.run([binary, *FLAGS, f"--user-data-dir={profile}", *arguments],
+                                capture_output=True, text=True, timeout=180)
+    if result.returncode != 0:
+        sys.stderr.write(result.stderr)
+        raise SystemExit(f"chromium exited with {result.returncode}")
+    return result.stdout
+
+
+def attribute_values(dom, name):
+    return Counter(html.unescape(v) for v in re.findall(rf'{name}="([^"]*)"', dom))
+
+
+def main(argv):
+    if len(argv) != 4:
+        print(__doc__, file=sys.stderr)
+        return 2
+    binary, directory, screenshot = argv[1:]
+    if shutil.which(binary) is None:
+        print(f"{binary} not found: install Debian's chromium (bash bootstrap.sh test does)")
+        return 77
+    with open(os.path.join(directory, "report.json")) as f:
+        report = json.load(f)
+    expected = [f"{case['name']}/{claim['id']}" for case in report["cases"] for claim in case["claims"]]
+    verdicts = Counter(claim["verdict"] for case in report["cases"] for claim in case["claims"])
+    page = "file://" + os.path.abspath(os.path.join(directory, "report.html"))
+
+    dom = chromium(binary, ["--dump-dom", page])
+    problems = []
+    rows, plots = attribute_values(dom, "data-claim-row"), attribute_values(dom, "data-claim-plot")
+    for key in expected:
+        if rows[key] != 1:
+            problems.append(f"{key}: {rows[key]} findings rows, expected 1")
+        if plots[key] != 1:
+            problems.append(f"{key}: {plots[key]} plots, expected 1")
+    for key in set(rows) | set(plots):
+        if key not in expected:
+            problems.append(f"{key}: row or plot for a claim that is not in report.json")
+    # Every plot is an <svg> with at least one plotted point (errors of 0 included).
+    for match in re.finditer(r'<svg class="plot"[^>]*data-claim-plot="([^"]*)"[^>]*>(.*?)</svg>', dom, re.S):
+        if "data-point=" not in match.group(2):
+            problems.append(f"{html.unescape(match.group(1))}: plot without points")
+        if re.search(r'="[^"]*\b(nan|inf)\b', match.group(2)):
+            problems.append(f"{html.unescape(match.group(1))}: NaN or infinity in the plot")
+    # Verdicts as text and colour class, one per findings row.
+    shown = Counter(re.findall(r'<tr class="row-(pass|fail|error)', dom))
+    if shown != verdicts:
+        problems.append(f"findings rows show verdicts {dict(shown)}, report.json has {dict(verdicts)}")
+    # Self-contained: no scripts, stylesheets, images or fonts fetched from anywhere.
+    for fetched in re.findall(r'<(?:script|link|img|iframe)\b[^>]*(?:src|href)="([^"]*)"', dom):
+        problems.append(f"page loads {fetched}")
+    if re.search(r'url\((?!#)', dom):
+        problems.append("page refers to an external url(...)")
+
+    for problem in problems:
+        print(problem)
+    print(f"{len(expected)} claims, {sum(rows.values())} rows, {sum(plots.values())} plots in the rendered DOM")
+
+    chromium(binary, [f"--screenshot={os.path.abspath(screenshot)}", "--window-size=1280,4000", page])
+    if not os.path.getsize(screenshot):
+        problems.append("empty screenshot")
+    print(f"screenshot: {os.path.abspath(screenshot)}")
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

@@ -1,0 +1,48 @@
+// junit.xml on a small synthetic report: every claim a test case, failing
+// claims with a <failure> carrying the explanation and the evidence summary.
+#include "reports/junit_report.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "tests/reports/synthetic_report.hpp"
+
+namespace vivv {
+namespace {
+
+int count(const std::string& text, const std::string& needle) {
+  int n = 0;
+  for (std::size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1))
+    ++n;
+  return n;
+}
+
+TEST(JunitReport, EveryClaimIsATestCase) {
+  const std::string xml = render_junit(testing::synthetic_report());
+  EXPECT_EQ(count(xml, "<testcase "), 3);
+  EXPECT_NE(xml.find("<testcase classname=\"alpha\" name=\"global-order\">"), std::string::npos);
+  EXPECT_NE(xml.find("<testcase classname=\"beta\" name=\"twin-term-invariance\">"),
+            std::string::npos);
+  EXPECT_NE(xml.find("<testsuites name=\"vivv\" tests=\"3\" failures=\"1\" errors=\"0\">"),
+            std::string::npos);
+  EXPECT_NE(
+      xml.find("<testsuite name=\"alpha\" tests=\"2\" failures=\"1\" errors=\"0\" time=\"0.25\">"),
+      std::string::npos);
+}
+
+TEST(JunitReport, FailingClaimCarriesExplanationAndEvidence) {
+  const std::string xml = render_junit(testing::synthetic_report());
+  EXPECT_EQ(count(xml, "<failure "), 1);
+  std::size_t failure =
+      xml.find("<failure type=\"fail\" message=\"the order is too low: 1 &lt; 2\">");
+  ASSERT_NE(failure, std::string::npos);
+  std::size_t testcase = xml.rfind("<testcase ", failure);
+  EXPECT_NE(xml.substr(testcase, 80).find("lagrangian-order"), std::string::npos);
+  std::string body = xml.substr(failure, xml.find("</failure>", failure) - failure);
+  EXPECT_NE(body.find("observed order 1, predicted 2 (exact)"), std::string::npos);
+  EXPECT_NE(body.find("|L_d − L_d^E|"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace vivv
