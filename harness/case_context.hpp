@@ -15,6 +15,7 @@
 #include "references/gauss_legendre.hpp"
 #include "harness/claim_result.hpp"
 #include "references/reference_flow.hpp"
+#include "references/taylor_reference.hpp"
 
 namespace vivv {
 
@@ -98,7 +99,8 @@ struct CaseContext {
 
   const CaseSpec& spec;
   System system;
-  ReferenceFlow<System> reference;
+  // Closed forms where they exist, the Taylor-series flow otherwise.
+  std::conditional_t<has_closed_form_v<System>, ReferenceFlow<System>, TaylorReference<System>> reference;
   State<T, n> initial;
   T final_time;
   DelScheme<T> scheme;                    // formalism "qxq"
@@ -126,6 +128,9 @@ struct CaseContext {
     scheme.past = spec.past_discretization ? make_discretization<T>(*spec.past_discretization)
                                            : scheme.future;
     scheme.mismatched = spec.past_discretization.has_value();
+    // The initial state must be inside the Lagrangian's domain and regular
+    // there; otherwise this throws SingularLagrangianError naming the state.
+    euler_lagrange_acceleration(system, initial.q, initial.w);
   }
 
   // h = T/N for every N of the sweep.

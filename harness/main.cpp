@@ -1,6 +1,7 @@
 // vivv: the command-line tool (DESIGN §3).
 //
 //   vivv run [CASE.json ...] [--out DIR] [--digits D] [--jobs J] [--progress]
+//   vivv report REPORT.json [MORE.json ...] --out DIR   (merge and re-render)
 //   vivv list
 //
 // Exit codes: 0 every claim holds, 1 a claim fails, 2 bad input (the message
@@ -23,6 +24,7 @@
 #include "cases/case_file.hpp"
 #include "cases/catalogue.hpp"
 #include "core/discrete_lagrangian.hpp"
+#include "harness/bench_reference.hpp"
 #include "harness/claims.hpp"
 #include "harness/run_case.hpp"
 #include "harness/version.hpp"
@@ -108,6 +110,8 @@ nlohmann::json run_one(const CaseSpec& spec, const RunOptions& options) {
     throw BadInput(spec.file + ": " + error.what());
   } catch (const std::domain_error& error) {
     throw BadInput(spec.file + ": " + error.what());
+  } catch (const std::runtime_error& error) {  // e.g. a reference flow that cannot reach T
+    throw BadInput(spec.file + ": " + error.what());
   }
 }
 
@@ -162,6 +166,8 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
   return results;
 }
 
+int write_reports(const std::string& out, const nlohmann::json& report);
+
 int command_run(const std::vector<std::string>& args, const std::string& command_line) {
   RunOptions options = parse_run_options(args);
   std::vector<CaseSpec> specs;
@@ -174,12 +180,40 @@ int command_run(const std::vector<std::string>& args, const std::string& command
   }
   std::vector<nlohmann::json> cases = run_all(specs, options);
   nlohmann::json report = assemble_report(cases, {command_line, library_versions()});
-  fs::create_directories(options.out);
-  write_atomically((fs::path(options.out) / "report.json").string(), report.dump(2) + "\n");
+  return write_reports(options.out, report);
+}
+
+// Writes DIR/report.json, report.html and junit.xml, prints the claims table;
+// the exit code of the verdicts.
+int write_reports(const std::string& out, const nlohmann::json& report) {
+  std::vector<std::string> paths = write_report_directory(out, report);
   print_claims_table(std::cout, report);
-  std::cout << "report: " << (fs::path(options.out) / "report.json").string() << "\n";
+  std::cout << "report:";
+  for (const auto& path : paths) std::cout << " " << path;
+  std::cout << "\n";
   return report["summary"]["fail"].get<int>() + report["summary"]["error"].get<int>() == 0 ? exit_pass
                                                                                          : exit_fail;
+}
+
+// vivv report A.json [B.json ...] --out DIR: the cases of every report in one,
+// re-rendered (runs split across machines). Duplicate case names and other
+// schemas are bad input.
+int command_report(const std::vector<std::string>& args, const std::string& command_line) {
+  std::string out;
+  std::vector<std::pair<std::string, nlohmann::json>> inputs;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--out") {
+      if (i + 1 >= args.size()) throw BadInput("--out: missing value");
+      out = args[++i];
+    } else if (args[i].rfind("--", 0) == 0) {
+      throw BadInput("unknown option '" + args[i] + "'");
+    } else {
+      inputs.emplace_back(args[i], read_report(args[i]));
+    }
+  }
+  if (inputs.empty()) throw BadInput("vivv report: expected at least one report.json");
+  if (out.empty()) throw BadInput("vivv report: expected --out DIR");
+  return write_reports(out, merge_reports(inputs, {command_line, library_versions()}));
 }
 
 int command_list() {
@@ -201,6 +235,7 @@ int command_list() {
 
 int usage(std::ostream& out, int code) {
   out << "usage: vivv run [CASE.json ...] [--out DIR] [--digits D] [--jobs J] [--progress|--quiet]\n"
+         "       vivv report REPORT.json [MORE.json ...] --out DIR\n"
          "       vivv list\n";
   return code;
 }
@@ -222,6 +257,9 @@ int main(int argc, char** argv) {
   try {
     if (command == "run") return command_run(args, command_line);
     if (command == "list") return command_list();
+    if (command == "bench" && args.size() == 1 && args[0] == "reference")
+      return run_reference_benchmark(std::cout);
+    if (command == "report") return command_report(args, command_line);
     if (command == "--help" || command == "help") return usage(std::cout, exit_pass);
     std::cerr << "vivv: unknown command '" << command << "'\n";
     return usage(std::cerr, exit_bad_input);
@@ -229,6 +267,9 @@ int main(int argc, char** argv) {
     std::cerr << "vivv: " << error.what() << "\n";
     return exit_bad_input;
   } catch (const BadInput& error) {
+    std::cerr << "vivv: " << error.what() << "\n";
+    return exit_bad_input;
+  } catch (const ReportError& error) {
     std::cerr << "vivv: " << error.what() << "\n";
     return exit_bad_input;
   }

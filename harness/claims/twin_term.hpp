@@ -149,7 +149,7 @@ struct MismatchedLegendreClaim {
     claim.evidence["modified_lagrangian"] = "L_mod(q, w) = L(q, w) − c·q, c = a − ã";
     claim.evidence["c"] = shift;
     context.report("mismatched-legendre: modified reference flow");
-    ReferenceFlow<ForceShifted<System>> modified_flow(
+    TaylorReference<ForceShifted<System>> modified_flow(
         modified, reference_tolerance_for<T>(context.spec.digits));
     State<T, n> modified_final = modified_flow.advance(context.initial, context.final_time);
     claim.evidence["modified_solution_q_T"] = to_decimal<T>(modified_final.q[0]);
