@@ -141,7 +141,10 @@ DiscretizationSpec read_discretization(Reader reader, int dimension, bool allow_
                                                          : std::vector<std::string>{"qxq"});
   if (spec.formalism == "tq") {
     TQSpec tq;
-    tq.psi = reader.one_of("psi", {"linear"});
+    tq.psi = reader.one_of("psi", {"linear", "taylor"});
+    if (tq.psi == "taylor") tq.r = reader.integer("r", 1, 8);
+    if (tq.psi != "taylor" && reader.has("r"))
+      reader.fail("r", "a degree r is taken only by psi \"taylor\", not \"" + tq.psi + "\"");
     tq.theta = reader.fraction("theta");
     tq.lagrangian = reader.one_of("lagrangian", {"quadrature", "pullback"});
     if (tq.lagrangian == "quadrature") tq.nodes = reader.integer("nodes", 1, 64);

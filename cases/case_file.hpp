@@ -32,9 +32,11 @@ struct DiscretizationSpec;
 // A discretization of TQ (DESIGN §1.3): {"formalism": "tq", "psi": "linear",
 // "theta": "1/2", "lagrangian": "quadrature", "nodes": 4} or
 // {"formalism": "tq", "psi": "linear", "theta": "0", "lagrangian": "pullback",
-//  "qxq": {"kind": "midpoint"}}, each with an optional twin term.
+//  "qxq": {"kind": "midpoint"}} or {"formalism": "tq", "psi": "taylor", "r": 2, ...},
+// each with an optional twin term.
 struct TQSpec {
-  std::string psi = "linear";
+  std::string psi = "linear";  // "linear" or "taylor"
+  int r = 1;                   // degree of the taylor curve segment, 1..8 (taylor only)
   std::string theta = "0";  // a decimal or a fraction "p/q" in [0, 1]
   std::string lagrangian = "quadrature";
   int nodes = 0;  // Gauss–Legendre nodes (quadrature)

@@ -8,17 +8,23 @@
 // with respect to v come from automatic differentiation.
 #pragma once
 
+#include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "core/discrete_lagrangian.hpp"
 #include "core/small_linear_algebra.hpp"
+#include "core/tape.hpp"
+#include "core/taylor_curve.hpp"
 
 namespace vivv {
 
 enum class CurveFamily {
   linear,  // psi = q + t·w
+  taylor,  // psi = Σ_{k<=r} t^k/k! q^(k)(0), the solution through v to degree r
 };
 
 enum class TQLagrangianKind {
@@ -29,6 +35,9 @@ enum class TQLagrangianKind {
 template <class T>
 struct TQDiscretization {
   CurveFamily psi = CurveFamily::linear;
+  int r = 1;  // degree of the taylor family
+  // a(q, w) = M⁻¹ (dL/dq − (d²L/dw dq) w), recorded once (core/euler_lagrange_tape.hpp): taylor.
+  std::shared_ptr<const Tape<T>> acceleration;
   T theta = 0;  // α− = −θh, α+ = (1 − θ)h
   TQLagrangianKind lagrangian = TQLagrangianKind::quadrature;
   std::vector<T> nodes, weights;  // Gauss–Legendre on [0, 1], weights summing to 1 (quadrature)
@@ -42,39 +51,111 @@ struct TangentPoint {
   Point<S, n> q, w;
 };
 
-// psi(h, t, v) and dpsi/dt: for the linear family, (q + t·w, w).
+// The curve segment t ↦ psi(h, t, v) through v as the polynomial psi = Σ_k c_k t^k:
+// linear: (c_0, c_1) = (q, w); taylor-r: c_k = q^(k)(0)/k!, k <= r, by Taylor-mode
+// AD of the Euler–Lagrange acceleration (core/taylor_curve.hpp), in scalar S.
+// Built once per v; at(t) evaluates it as often as needed.
+template <class S, int n>
+class CurveSegment {
+ public:
+  template <class T>
+  CurveSegment(const TQDiscretization<T>& d, const TangentPoint<S, n>& v) {
+    switch (d.psi) {
+      case CurveFamily::linear:
+        position_ = {v.q, v.w};
+        break;
+      case CurveFamily::taylor: {
+        if (!d.acceleration)
+          throw std::logic_error(
+              "curve_segment: psi taylor needs the Euler–Lagrange tape (acceleration)");
+        std::vector<S> q(v.q.begin(), v.q.end()), w(v.w.begin(), v.w.end());
+        auto series = solution_taylor_coefficients<S, T>(*d.acceleration, q, w, d.r);
+        position_.resize(d.r + 1);
+        for (int k = 0; k <= d.r; ++k)
+          for (int i = 0; i < n; ++i) position_[k][i] = std::move(series[i][k]);
+        break;
+      }
+    }
+    // dpsi/dt = Σ_{k>=1} k c_k t^(k−1).
+    for (std::size_t k = 1; k < position_.size(); ++k) {
+      velocity_.push_back(position_[k]);
+      if (k > 1)
+        for (auto& component : velocity_.back())
+          taylor_curve_detail::scale_in_place(component, T(static_cast<int>(k)));
+    }
+  }
+
+  // (psi, dpsi/dt) = (Σ_k c_k t^k, Σ_{k>=1} k c_k t^(k−1)) by Horner, for t in S or in T
+  // (a constant time in T multiplies leaf by leaf, much cheaper in nested jets).
+  template <class U>
+  TangentPoint<S, n> at(const U& t) const {
+    TangentPoint<S, n> point;
+    point.q = horner(position_, t);
+    point.w = horner(velocity_, t);
+    return point;
+  }
+
+ private:
+  // Σ_k p_k t^k, component by component.
+  template <class U>
+  static Point<S, n> horner(const std::vector<Point<S, n>>& p, const U& t) {
+    Point<S, n> sum = p.back();
+    for (int k = static_cast<int>(p.size()) - 2; k >= 0; --k) {
+      for (int i = 0; i < n; ++i) {
+        if constexpr (std::is_same_v<U, S>) {
+          sum[i] = sum[i] * t;
+        } else {
+          taylor_curve_detail::scale_in_place(sum[i], t);
+        }
+        sum[i] += p[k][i];
+      }
+    }
+    return sum;
+  }
+
+  std::vector<Point<S, n>> position_;  // c_0 … c_degree
+  std::vector<Point<S, n>> velocity_;  // k c_k, k = 1 … degree
+};
+
+// psi(h, t, v) and dpsi/dt: linear (q + t·w, w); taylor-r the degree-r Taylor
+// polynomial of the solution through v and its derivative.
 template <class S, int n, class T>
 TangentPoint<S, n> curve_segment(const TQDiscretization<T>& d, const TangentPoint<S, n>& v, const S& t) {
-  TangentPoint<S, n> point;
-  switch (d.psi) {
-    case CurveFamily::linear:
-      for (int i = 0; i < n; ++i) {
-        point.q[i] = v.q[i] + t * v.w[i];
-        point.w[i] = v.w[i];
-      }
-      break;
-  }
-  return point;
+  return CurveSegment<S, n>(d, v).at(t);
+}
+
+// d−(v) = psi(h, α−, v), on a curve segment already built through v.
+template <class S, int n, class T>
+Point<S, n> d_minus(const TQDiscretization<T>& d, const CurveSegment<S, n>& curve, const T& h) {
+  return curve.at(T(-d.theta * h)).q;
+}
+
+// d+(v) = psi(h, α+, v), on a curve segment already built through v.
+template <class S, int n, class T>
+Point<S, n> d_plus(const TQDiscretization<T>& d, const CurveSegment<S, n>& curve, const T& h) {
+  return curve.at(T((1 - d.theta) * h)).q;
 }
 
 // d−(v) = psi(h, α−, v).
 template <class S, int n, class T>
 Point<S, n> d_minus(const TQDiscretization<T>& d, const TangentPoint<S, n>& v, const T& h) {
-  return curve_segment<S, n>(d, v, S(-d.theta * h)).q;
+  return d_minus<S, n>(d, CurveSegment<S, n>(d, v), h);
 }
 
 // d+(v) = psi(h, α+, v).
 template <class S, int n, class T>
 Point<S, n> d_plus(const TQDiscretization<T>& d, const TangentPoint<S, n>& v, const T& h) {
-  return curve_segment<S, n>(d, v, S((1 - d.theta) * h)).q;
+  return d_plus<S, n>(d, CurveSegment<S, n>(d, v), h);
 }
 
-// The blown-up discrete Lagrangian L̂_h(v) = L_h(v)/h (paper §2.4, stage 1):
+// The blown-up discrete Lagrangian L̂_h(v) = L_h(v)/h (paper §2.4, stage 1), on
+// the curve segment through v:
 // quadrature: Σ_i b_i L(psi(α− + c_i h), dpsi/dt(α− + c_i h));
 // pullback: L_d(d−(v), d+(v); h)/h; twin term: + a·h^(s−1)·(d+(v) − d−(v)).
 template <LagrangianSystem System, class S>
 S blown_up_lagrangian(const System& system, const TQDiscretization<typename System::Scalar>& d,
-                      const TangentPoint<S, System::dimension>& v, const typename System::Scalar& h) {
+                      const CurveSegment<S, System::dimension>& curve,
+                      const typename System::Scalar& h) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
   S value = S(0);
@@ -82,22 +163,30 @@ S blown_up_lagrangian(const System& system, const TQDiscretization<typename Syst
     case TQLagrangianKind::quadrature:
       for (std::size_t i = 0; i < d.nodes.size(); ++i) {
         T t = -d.theta * h + d.nodes[i] * h;
-        auto point = curve_segment<S, n>(d, v, S(t));
+        auto point = curve.at(t);
         value += d.weights[i] * system.lagrangian(point.q, point.w);
       }
       break;
     case TQLagrangianKind::pullback:
-      value = discrete_lagrangian(system, d.qxq, d_minus<S, n>(d, v, h), d_plus<S, n>(d, v, h), h) / h;
+      value = discrete_lagrangian(system, d.qxq, d_minus<S, n>(d, curve, h),
+                                  d_plus<S, n>(d, curve, h), h) / h;
       break;
   }
   if (d.twin) {
     using std::pow;
     T scale = pow(h, d.twin->power - 1);
-    auto minus = d_minus<S, n>(d, v, h);
-    auto plus = d_plus<S, n>(d, v, h);
+    auto minus = d_minus<S, n>(d, curve, h);
+    auto plus = d_plus<S, n>(d, curve, h);
     for (int i = 0; i < n; ++i) value += scale * d.twin->a[i] * (plus[i] - minus[i]);
   }
   return value;
+}
+
+// L̂_h(v) = L_h(v)/h as above, building the curve segment through v.
+template <LagrangianSystem System, class S>
+S blown_up_lagrangian(const System& system, const TQDiscretization<typename System::Scalar>& d,
+                      const TangentPoint<S, System::dimension>& v, const typename System::Scalar& h) {
+  return blown_up_lagrangian(system, d, CurveSegment<S, System::dimension>(d, v), h);
 }
 
 // The TQ discrete Legendre transforms at v (DESIGN §1.3), with N∓ = [−A⁻¹B; I]
@@ -121,8 +210,9 @@ TQLegendre<S, System::dimension> tq_legendre(const System& system,
     jet_v.q[i] = J::variable(v.q[i], i);
     jet_v.w[i] = J::variable(v.w[i], n + i);
   }
-  J lagrangian = blown_up_lagrangian(system, d, jet_v, h);
-  Point<J, n> minus = d_minus<J, n>(d, jet_v, h), plus = d_plus<J, n>(d, jet_v, h);
+  const CurveSegment<J, n> curve(d, jet_v);
+  J lagrangian = blown_up_lagrangian(system, d, curve, h);
+  Point<J, n> minus = d_minus<J, n>(d, curve, h), plus = d_plus<J, n>(d, curve, h);
   // Blocks of Dd− = [A B] and Dd+ = [C D].
   SmallMatrix<S, n, n> a, b, c, dd;
   std::array<S, n> gradient_q, gradient_w;

@@ -5,11 +5,14 @@
 #include <algorithm>
 #include <functional>
 #include <map>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "cases/case_file.hpp"
 #include "core/del_evolution.hpp"
+#include "core/euler_lagrange_tape.hpp"
 #include "core/state.hpp"
 #include "core/tq_evolution.hpp"
 #include "references/gauss_legendre.hpp"
@@ -56,7 +59,8 @@ template <class T>
 TQDiscretization<T> make_tq_discretization(const DiscretizationSpec& spec) {
   const TQSpec& tq = *spec.tq;
   TQDiscretization<T> d;
-  d.psi = CurveFamily::linear;
+  d.psi = tq.psi == "taylor" ? CurveFamily::taylor : CurveFamily::linear;
+  d.r = tq.psi == "taylor" ? tq.r : 1;
   d.theta = from_fraction<T>(tq.theta);
   if (tq.lagrangian == "quadrature") {
     d.lagrangian = TQLagrangianKind::quadrature;
@@ -71,12 +75,31 @@ TQDiscretization<T> make_tq_discretization(const DiscretizationSpec& spec) {
   return d;
 }
 
+// The TQ discretization a case file describes for `system`: as above, with the
+// Euler–Lagrange tape a(q, w) of its L recorded for a taylor psi.
+template <LagrangianSystem System>
+TQDiscretization<typename System::Scalar> make_tq_discretization(const DiscretizationSpec& spec,
+                                                                 const System& system) {
+  auto d = make_tq_discretization<typename System::Scalar>(spec);
+  if (d.psi == CurveFamily::taylor) {
+    if constexpr (TapeRecordable<System>) {
+      d.acceleration =
+          std::make_shared<const Tape<typename System::Scalar>>(euler_lagrange_tape(system));
+    } else {
+      throw std::invalid_argument(
+          std::string("psi \"taylor\" needs a Lagrangian that can be recorded on a tape; ") +
+          System::name + "'s cannot");
+    }
+  }
+  return d;
+}
+
 // Order r of a TQ discretization: its order of contact with the exact one
 // (Definition 5.4), the lower of the curve's and the Lagrangian's. A linear
-// psi agrees with the solution to O(t²): r = 1.
+// psi agrees with the solution to O(t²): r = 1; a taylor-r psi to O(t^{r+1}): r.
 template <class T>
 int nominal_order(const TQDiscretization<T>& d) {
-  int psi_order = 1;  // linear
+  int psi_order = d.psi == CurveFamily::taylor ? d.r : 1;
   int lagrangian_order = d.lagrangian == TQLagrangianKind::quadrature
                              ? 2 * static_cast<int>(d.nodes.size())
                              : d.qxq.nominal_order();
@@ -121,8 +144,9 @@ struct CaseContext {
       initial.w[i] = from_decimal<T>(spec.w[i]);
     }
     if (spec.discretization.formalism == "tq") {
-      tq = make_tq_discretization<T>(spec.discretization);
-      if (spec.compare_discretization) tq_compare = make_tq_discretization<T>(*spec.compare_discretization);
+      tq = make_tq_discretization(spec.discretization, system);
+      if (spec.compare_discretization)
+        tq_compare = make_tq_discretization(*spec.compare_discretization, system);
     }
     scheme.future = make_discretization<T>(spec.discretization);
     scheme.past = spec.past_discretization ? make_discretization<T>(*spec.past_discretization)

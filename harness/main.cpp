@@ -51,6 +51,19 @@ struct RunOptions {
 
 std::string default_suite_directory() { return std::string(VIVV_SOURCE_DIR) + "/cases/suite"; }
 
+// The case file as report.json names it: relative to the source tree when it
+// lies inside it (the same bytes from any checkout and working directory),
+// else as given on the command line.
+std::string report_file_name(const std::string& file) {
+  std::error_code file_error, root_error;
+  fs::path path = fs::weakly_canonical(fs::absolute(file), file_error);
+  fs::path root = fs::weakly_canonical(VIVV_SOURCE_DIR, root_error);
+  if (file_error || root_error) return file;
+  fs::path relative = path.lexically_relative(root);
+  if (relative.empty() || *relative.begin() == "..") return file;
+  return relative.generic_string();
+}
+
 std::vector<std::string> default_suite() {
   std::vector<std::string> files;
   for (const auto& entry : fs::directory_iterator(default_suite_directory()))
@@ -179,7 +192,13 @@ int command_run(const std::vector<std::string>& args, const std::string& command
       throw CaseError(file, "name", "'" + specs.back().name + "' is also the name of " + it->second);
   }
   std::vector<nlohmann::json> cases = run_all(specs, options);
+  nlohmann::json case_paths = nlohmann::json::object();  // absolute paths: run block only
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    cases[i]["file"] = report_file_name(specs[i].file);
+    case_paths[specs[i].name] = fs::absolute(specs[i].file).lexically_normal().string();
+  }
   nlohmann::json report = assemble_report(cases, {command_line, library_versions()});
+  report["run"]["case_paths"] = case_paths;
   return write_reports(options.out, report);
 }
 

@@ -3,11 +3,14 @@
 // claim, source, prediction, observed, verdict, why they differ — then per
 // claim a log-log plot in inline SVG (every series of the claim, its fitted
 // line, points used for the fit marked apart from dropped ones with the
-// reason as a tooltip), the pairwise orders and the evidence.
+// reason as a tooltip), a log-log map of h_max against |w| where the claim
+// has one (existence-uniqueness), the pairwise orders and the evidence.
 //
 // Hooks for tests and scripts: every findings row is a <tr data-claim-row="CASE/CLAIM">,
 // every plot an <svg data-claim-plot="CASE/CLAIM">, every verdict carries
-// data-verdict="pass|fail|error", every plotted point data-point="used|dropped|zero|measured".
+// data-verdict="pass|fail|error", every plotted point data-point="used|dropped|zero|measured",
+// every map of h_max against |w| an <svg data-claim-map="CASE/CLAIM"> with its
+// points data-map-point="positive|zero".
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -20,5 +23,11 @@ std::string render_html(const nlohmann::json& report);
 
 // The log-log plot of one claim (its "series"), as an <svg> element.
 std::string render_claim_plot(const nlohmann::json& claim, const std::string& key);
+
+// The log-log map of h_max against the speed |w| from the claim's evidence
+// "h_max_by_speed" ([{"speed", "h_max"}, ...], existence-uniqueness), as an
+// <svg data-claim-map="CASE/CLAIM">; h_max = 0 is drawn in a band below the
+// axis. "" when the claim has no such evidence.
+std::string render_speed_map(const nlohmann::json& claim, const std::string& key);
 
 }  // namespace vivv

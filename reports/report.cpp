@@ -153,6 +153,8 @@ nlohmann::json merge_reports(const std::vector<std::pair<std::string, nlohmann::
     const nlohmann::json case_seconds = source_run.value("case_seconds", nlohmann::json::object());
     for (const auto& [name, seconds] : case_seconds.items())
       run_json["case_seconds"][name] = seconds;
+    const nlohmann::json case_paths = source_run.value("case_paths", nlohmann::json::object());
+    for (const auto& [name, path] : case_paths.items()) run_json["case_paths"][name] = path;
     run_json["merged_from"].push_back({{"report", file}, {"run", source_run}});
   }
   return {{"schema", report_schema},

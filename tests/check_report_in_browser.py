@@ -6,7 +6,9 @@
 REPORT_DIR holds report.json and report.html. From Chromium's --dump-dom
 (the DOM after layout, not the file as written) it checks that every claim of
 report.json has exactly one findings row (data-claim-row) and one plot
-(data-claim-plot, an <svg> with plotted points), that every verdict is shown,
+(data-claim-plot, an <svg> with plotted points), that every claim with
+evidence "h_max_by_speed" has one map of h_max against |w| (data-claim-map, with
+points) and no other claim has one, that every verdict is shown,
 and that the page loads nothing from the network. It then saves a screenshot
 of the top of the page. Exit 0 on success, 1 on a failed check, 77 (ctest's
 skip code here) when CHROMIUM is not installed.
@@ -70,6 +72,20 @@ def main(argv):
             problems.append(f"{html.unescape(match.group(1))}: plot without points")
         if re.search(r'="[^"]*\b(nan|inf)\b', match.group(2)):
             problems.append(f"{html.unescape(match.group(1))}: NaN or infinity in the plot")
+    # A map of h_max against |w| for every claim whose evidence has h_max_by_speed, none for others.
+    mapped = [f"{case['name']}/{claim['id']}" for case in report["cases"] for claim in case["claims"]
+              if isinstance(claim.get("evidence"), dict) and claim["evidence"].get("h_max_by_speed")]
+    maps = attribute_values(dom, "data-claim-map")
+    for key in mapped:
+        if maps[key] != 1:
+            problems.append(f"{key}: {maps[key]} maps of h_max against |w|, expected 1")
+    for key in set(maps) - set(mapped):
+        problems.append(f"{key}: map of h_max against |w| for a claim without h_max_by_speed")
+    for match in re.finditer(r'<svg class="plot map"[^>]*data-claim-map="([^"]*)"[^>]*>(.*?)</svg>', dom, re.S):
+        if "data-map-point=" not in match.group(2):
+            problems.append(f"{html.unescape(match.group(1))}: map without points")
+        if re.search(r'="[^"]*\b(nan|inf)\b', match.group(2)):
+            problems.append(f"{html.unescape(match.group(1))}: NaN or infinity in the map")
     # Verdicts as text and colour class, one per findings row.
     shown = Counter(re.findall(r'<tr class="row-(pass|fail|error)', dom))
     if shown != verdicts:
@@ -82,7 +98,8 @@ def main(argv):
 
     for problem in problems:
         print(problem)
-    print(f"{len(expected)} claims, {sum(rows.values())} rows, {sum(plots.values())} plots in the rendered DOM")
+    print(f"{len(expected)} claims, {sum(rows.values())} rows, {sum(plots.values())} plots, "
+          f"{sum(maps.values())} h_max maps (expected {len(mapped)}) in the rendered DOM")
 
     chromium(binary, [f"--screenshot={os.path.abspath(screenshot)}", "--window-size=1280,4000", page])
     if not os.path.getsize(screenshot):

@@ -1,6 +1,7 @@
 // report.html on a small synthetic report: every claim has its row and its
 // plot, a failing claim renders as fail, errors of exactly 0 are drawn at the
-// plot floor, long decimals are shortened with the full value kept.
+// plot floor, long decimals are shortened with the full value kept, and a
+// claim with h_max_by_speed evidence gets its map of h_max against |w|.
 #include "reports/html_report.hpp"
 
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <regex>
 #include <string>
+#include <vector>
 
 #include "reports/report_text.hpp"
 #include "tests/reports/synthetic_report.hpp"
@@ -74,6 +76,53 @@ TEST(HtmlReport, UsedAndDroppedPointsAreMarkedApartWithTheReason) {
   EXPECT_NE(plot.find("dropped from the fit: pre-asymptotic"), std::string::npos);
   EXPECT_EQ(count(plot, "data-fit=\"1\""), 1);
   EXPECT_NE(plot.find("data-legend"), std::string::npos);
+}
+
+TEST(HtmlReport, HmaxAgainstSpeedIsMappedWhereTheEvidenceHasIt) {
+  // No map for claims without h_max_by_speed.
+  EXPECT_EQ(count(render_html(testing::synthetic_report()), "data-claim-map="), 0);
+  const std::string page = render_html(testing::synthetic_report_with_map());
+  EXPECT_EQ(count(page, "data-claim-map="), 1);
+  EXPECT_EQ(count(page, "data-claim-map=\"gamma/existence-uniqueness\""), 1);
+  EXPECT_EQ(count(page, "data-claim-plot="), 4);  // the map is in addition to the plot
+  EXPECT_NE(page.find("Theorem 4.2: h_max(v) &gt; 0 however fast v is"), std::string::npos);
+  EXPECT_NE(page.find("h_max = 0 at 1 of 6 speeds"), std::string::npos);
+
+  const std::string map =
+      render_speed_map(testing::synthetic_existence_claim(), "gamma/existence-uniqueness");
+  EXPECT_EQ(map.rfind("<svg class=\"plot map\"", 0), 0u);
+  EXPECT_EQ(count(map, "data-map-point=\"positive\""), 5);
+  EXPECT_EQ(count(map, "data-map-point=\"zero\""), 1);
+  EXPECT_EQ(count(map, "data-map-line=\"1\""), 1);  // the positive points joined
+  EXPECT_NE(map.find("data-zero-band"), std::string::npos);
+  EXPECT_NE(map.find("h_max = 0: no step h &gt; 0 works at this speed"), std::string::npos);
+  EXPECT_NE(map.find(">speed |w|</text>"), std::string::npos);
+  EXPECT_NE(map.find(">h_max</text>"), std::string::npos);
+  EXPECT_NE(map.find("|w| = 8, h_max = 0.0e+00"), std::string::npos);
+  EXPECT_EQ(map.find("nan"), std::string::npos);
+  EXPECT_EQ(map.find("inf"), std::string::npos);
+  // h_max halves as |w| doubles: on log-log axes the five positive points
+  // step right and down by equal amounts.
+  std::regex circle("<circle cx=\"([0-9.]+)\" cy=\"([0-9.]+)\"");
+  std::vector<std::pair<double, double>> xy;
+  for (auto it = std::sregex_iterator(map.begin(), map.end(), circle); it != std::sregex_iterator();
+       ++it)
+    xy.emplace_back(std::stod((*it)[1]), std::stod((*it)[2]));
+  ASSERT_GE(xy.size(), 5u);
+  for (std::size_t i = 1; i < 5; ++i) {
+    EXPECT_GT(xy[i].first, xy[i - 1].first);   // faster to the right
+    EXPECT_GT(xy[i].second, xy[i - 1].second);  // smaller h_max lower down
+    EXPECT_NEAR(xy[i].first - xy[i - 1].first, xy[1].first - xy[0].first, 0.2);
+    EXPECT_NEAR(xy[i].second - xy[i - 1].second, xy[1].second - xy[0].second, 0.2);
+  }
+
+  // Without a zero: no band, and the caption says h_max > 0 everywhere.
+  nlohmann::json positive = testing::synthetic_existence_claim();
+  positive["evidence"]["h_max_by_speed"][5]["h_max"] = "1.25e-01";
+  EXPECT_EQ(render_speed_map(positive, "k").find("data-zero-band"), std::string::npos);
+  nlohmann::json no_map = testing::synthetic_existence_claim();
+  no_map["evidence"].erase("h_max_by_speed");
+  EXPECT_EQ(render_speed_map(no_map, "k"), "");
 }
 
 TEST(HtmlReport, LongDecimalsAreShortenedWithTheFullValueAsTitle) {

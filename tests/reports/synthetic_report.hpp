@@ -1,6 +1,8 @@
 // A small synthetic report (schema vivv-report/2) for the renderer tests:
 // two cases, three claims — a passing order claim with a dropped point, a
-// failing order claim, and a claim without an order whose errors are all 0.
+// failing order claim, and a claim without an order whose errors are all 0;
+// synthetic_report_with_map() adds an existence-uniqueness claim with its map
+// of h_max against |w|.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -97,6 +99,31 @@ inline nlohmann::json synthetic_report() {
   return assemble_report(
       {synthetic_case("alpha", {passing, failing}), synthetic_case("beta", {zeros})},
       {"vivv run synthetic", "vivv test"});
+}
+
+// An existence-uniqueness claim whose evidence carries the map h_max against
+// |w|: six speeds, h_max halving with each doubling, 0 at the fastest.
+inline nlohmann::json synthetic_existence_claim() {
+  using nlohmann::json;
+  json claim = synthetic_claim(
+      "existence-uniqueness", "fail",
+      json::array({synthetic_series("|F_h(v) − v|", {"1.0e-01", "5.0e-02", "2.5e-02", "1.25e-02"},
+                                    {0, 1, 2, 3}, json::array(), 1.0, 1.0, false)}));
+  json map = json::array();
+  const char* speeds[] = {"2.5e-01", "5.0e-01", "1", "2", "4", "8"};
+  const char* h_max[] = {"4.0", "2.0", "1.0", "5.0e-01", "2.5e-01", "0.0e+00"};
+  for (int i = 0; i < 6; ++i) map.push_back({{"speed", speeds[i]}, {"h_max", h_max[i]}});
+  claim["source"] = "paper Thm 4.2";
+  claim["evidence"] = {{"h_max_by_speed", map}, {"h_max_search", "largest h = T·2^-j"}};
+  return claim;
+}
+
+// synthetic_report() with a third case holding synthetic_existence_claim().
+inline nlohmann::json synthetic_report_with_map() {
+  nlohmann::json report = synthetic_report();
+  std::vector<nlohmann::json> cases(report["cases"].begin(), report["cases"].end());
+  cases.push_back(synthetic_case("gamma", {synthetic_existence_claim()}));
+  return assemble_report(cases, {"vivv run synthetic", "vivv test"});
 }
 
 }  // namespace vivv::testing
