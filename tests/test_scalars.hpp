@@ -44,4 +44,13 @@ class ScalarTest : public ::testing::Test {
   std::unique_ptr<PrecisionGuard> guard_;
 };
 
+// The tolerance the harness asks of a reference at T's precision:
+// 10^−(digits − 10), ten guard digits.
+template <class T>
+T reference_tolerance() {
+  using std::pow;
+  int digits = static_cast<int>((precision_bits<T>() - 1) * 0.30102999566398120);
+  return pow(T(10), -(digits - 10));
+}
+
 }  // namespace vivv::testing

@@ -16,14 +16,6 @@ template <class T>
 class ClosedFormsTest : public testing::ScalarTest<T> {};
 TYPED_TEST_SUITE(ClosedFormsTest, testing::Scalars, testing::ScalarNames);
 
-// The tolerance the harness asks of a reference: 10^−(digits − 10), ten guard digits.
-template <class T>
-T reference_tolerance() {
-  using std::pow;
-  int digits = static_cast<int>((precision_bits<T>() - 1) * 0.30102999566398120);
-  return pow(T(10), -(digits - 10));
-}
-
 template <class T>
 State<T, 1> state(const std::string& q, const std::string& w) {
   State<T, 1> v;
@@ -56,7 +48,7 @@ TYPED_TEST(ClosedFormsTest, HarmonicOscillatorMatchesTheExtrapolationFlow) {
   using T = TypeParam;
   HarmonicOscillator<T> system;
   system.omega = T(3) / 2;
-  const T tolerance = reference_tolerance<T>();
+  const T tolerance = testing::reference_tolerance<T>();
   for (const auto& [q0, w0, t] : std::vector<std::array<std::string, 3>>{
            {"1", "0", "2.5"}, {"-0.25", "2", "-1.75"}, {"3", "-1", "6"}}) {
     SCOPED_TRACE("q0 = " + q0 + ", w0 = " + w0 + ", t = " + t);
@@ -82,7 +74,7 @@ TYPED_TEST(ClosedFormsTest, HarmonicOscillatorMatchesTheExtrapolationFlow) {
 // extrapolation flow to the reference tolerance (at 200 bits: 1e-50).
 TYPED_TEST(ClosedFormsTest, PendulumMatchesTheExtrapolationFlowOnEveryBranch) {
   using T = TypeParam;
-  const T tolerance = reference_tolerance<T>();
+  const T tolerance = testing::reference_tolerance<T>();
   for (const auto& c : pendulum_cases()) {
     SCOPED_TRACE("k = " + c.k + ", q0 = " + c.q0 + ", w0 = " + c.w0 + ", t = " + c.t);
     Pendulum<T> system;
@@ -106,7 +98,7 @@ TYPED_TEST(ClosedFormsTest, PendulumMatchesTheExtrapolationFlowOnEveryBranch) {
 // closed form of a pendulum whose k is off by 1000 tolerances.
 TYPED_TEST(ClosedFormsTest, AgreementCheckRejectsAPendulumWithPerturbedK) {
   using T = TypeParam;
-  const T tolerance = reference_tolerance<T>();
+  const T tolerance = testing::reference_tolerance<T>();
   Pendulum<T> system, perturbed;
   perturbed.k = system.k * (1 + 1000 * tolerance);
   State<T, 1> start = state<T>("1", "0");
@@ -191,7 +183,7 @@ TYPED_TEST(ClosedFormsTest, PendulumCommutesWithFullTurns) {
 // q = 2 atan(sinh(√k t)); it matches the extrapolation flow forward and backward.
 TYPED_TEST(ClosedFormsTest, PendulumSeparatrixMatchesTheExtrapolationFlow) {
   using T = TypeParam;
-  const T tolerance = reference_tolerance<T>();
+  const T tolerance = testing::reference_tolerance<T>();
   for (const auto& [k, w0] : std::vector<std::array<std::string, 2>>{{"1", "2"}, {"4", "-4"}}) {
     SCOPED_TRACE("k = " + k + ", w0 = " + w0);
     Pendulum<T> system;
@@ -225,7 +217,7 @@ TYPED_TEST(ClosedFormsTest, PendulumSpecialCases) {
   EXPECT_EQ(free.w[0], T(1) / 2);
 
   system.k = T(-1);
-  const T tolerance = reference_tolerance<T>();
+  const T tolerance = testing::reference_tolerance<T>();
   State<T, 1> start = state<T>("0.25", "0.5");
   State<T, 1> closed = pendulum_flow(system, start, T(2), &motion);
   EXPECT_EQ(motion, PendulumMotion::rotation);  // seen from the inverted pendulum's top

@@ -16,14 +16,6 @@ template <class T>
 class ExtrapolationFlowTest : public testing::ScalarTest<T> {};
 TYPED_TEST_SUITE(ExtrapolationFlowTest, testing::Scalars, testing::ScalarNames);
 
-// The tolerance the harness asks of a reference: 10^−(digits − 10), ten guard digits.
-template <class T>
-T reference_tolerance() {
-  using std::pow;
-  int digits = static_cast<int>((precision_bits<T>() - 1) * 0.30102999566398120);
-  return pow(T(10), -(digits - 10));
-}
-
 // Canonical angular momentum J = q1 p2 − q2 p1, p = dL/dw: conserved by rotation symmetry.
 template <class System>
 auto angular_momentum(const System& system, const State<typename System::Scalar, 2>& v) {
@@ -37,7 +29,7 @@ auto angular_momentum(const System& system, const State<typename System::Scalar,
 TYPED_TEST(ExtrapolationFlowTest, IntegratesTheExponentialForwardAndBackward) {
   using T = TypeParam;
   using std::exp;
-  const T tolerance = reference_tolerance<T>();
+  const T tolerance = testing::reference_tolerance<T>();
   auto field = [](const Vector<T, 1>& y) { return y; };
   for (T t : {T(3), T(-5) / 2}) {
     auto solution =
@@ -54,7 +46,7 @@ TYPED_TEST(ExtrapolationFlowTest, IntegratesTheExponentialForwardAndBackward) {
 TYPED_TEST(ExtrapolationFlowTest, LandsExactlyOnTheRequestedTime) {
   using T = TypeParam;
   using std::pow;
-  const T tolerance = reference_tolerance<T>();
+  const T tolerance = testing::reference_tolerance<T>();
   HarmonicOscillator<T> system;
   State<T, 1> start;
   start.q[0] = 1;
@@ -73,7 +65,7 @@ TYPED_TEST(ExtrapolationFlowTest, LandsExactlyOnTheRequestedTime) {
 // Forward to t, then back to 0, returns to the start within twice the tolerance.
 TYPED_TEST(ExtrapolationFlowTest, ForwardThenBackwardReturnsToTheStart) {
   using T = TypeParam;
-  const T tolerance = reference_tolerance<T>();
+  const T tolerance = testing::reference_tolerance<T>();
   PaperExample<T> system;
   State<T, 1> start;
   start.q[0] = T(1) / 2;
@@ -89,7 +81,7 @@ TYPED_TEST(ExtrapolationFlowTest, ForwardThenBackwardReturnsToTheStart) {
 // conserves the energy and the canonical angular momentum to the tolerance.
 TYPED_TEST(ExtrapolationFlowTest, ChargedParticleConservesEnergyAndAngularMomentum) {
   using T = TypeParam;
-  const T tolerance = reference_tolerance<T>();
+  const T tolerance = testing::reference_tolerance<T>();
   ChargedParticle<T> system;
   system.set({T(3) / 2, T(1) / 2});
   State<T, 2> start;
@@ -108,7 +100,7 @@ TYPED_TEST(ExtrapolationFlowTest, ChargedParticleConservesEnergyAndAngularMoment
 // energy γ m + ½ k q² is conserved. A state with |w| = 1 is singular: an error.
 TYPED_TEST(ExtrapolationFlowTest, RelativisticParticleNearTheSpeedOfLight) {
   using T = TypeParam;
-  const T tolerance = reference_tolerance<T>();
+  const T tolerance = testing::reference_tolerance<T>();
   RelativisticParticle<T> system;
   system.k = 4;
   State<T, 1> start;
@@ -128,7 +120,7 @@ TYPED_TEST(ExtrapolationFlowTest, RelativisticParticleNearTheSpeedOfLight) {
 TYPED_TEST(ExtrapolationFlowTest, AgreementCheckRejectsALooseTolerance) {
   using T = TypeParam;
   using std::sqrt;
-  const T tolerance = reference_tolerance<T>();
+  const T tolerance = testing::reference_tolerance<T>();
   Pendulum<T> system;
   State<T, 1> start;
   start.q[0] = 2;
@@ -153,7 +145,7 @@ TYPED_TEST(ExtrapolationFlowTest, FailuresAreErrorsNotResults) {
   ExtrapolationOptions<T> options;
   options.max_steps = 3;
   try {
-    extrapolation_flow(system, start, T(100), reference_tolerance<T>(), options);
+    extrapolation_flow(system, start, T(100), testing::reference_tolerance<T>(), options);
     ADD_FAILURE() << "three steps cannot reach t = 100";
   } catch (const std::runtime_error& error) {
     EXPECT_NE(std::string(error.what()).find("steps"), std::string::npos) << error.what();

@@ -13,14 +13,6 @@ template <class T>
 class ReferenceFlowTest : public testing::ScalarTest<T> {};
 TYPED_TEST_SUITE(ReferenceFlowTest, testing::Scalars, testing::ScalarNames);
 
-// The tolerance the harness asks of a reference: 10^−(digits − 10), ten guard digits.
-template <class T>
-T reference_tolerance() {
-  using std::pow;
-  int digits = static_cast<int>((precision_bits<T>() - 1) * 0.30102999566398120);
-  return pow(T(10), -(digits - 10));
-}
-
 // A system the facade does not recognize: the harmonic oscillator behind a
 // wrapper, as the harness's wrappers (twin terms, shifted forces) look to it.
 template <class T>
@@ -37,7 +29,7 @@ struct WrappedOscillator {
 TYPED_TEST(ReferenceFlowTest, ClosedFormsAreUsedWhereTheyExist) {
   using T = TypeParam;
   Pendulum<T> pendulum;
-  ReferenceFlow<Pendulum<T>> flow(pendulum, reference_tolerance<T>());
+  ReferenceFlow<Pendulum<T>> flow(pendulum, testing::reference_tolerance<T>());
   static_assert(ReferenceFlow<Pendulum<T>>::closed_form);
   static_assert(ReferenceFlow<HarmonicOscillator<T>>::closed_form);
   static_assert(!ReferenceFlow<PaperExample<T>>::closed_form);
@@ -61,7 +53,7 @@ TYPED_TEST(ReferenceFlowTest, ClosedFormsAreUsedWhereTheyExist) {
 // the result within the tolerance (the paper's example, L not separable).
 TYPED_TEST(ReferenceFlowTest, ExtrapolationAgreesWithATighterRerunOnANonSeparableSystem) {
   using T = TypeParam;
-  const T tolerance = reference_tolerance<T>();
+  const T tolerance = testing::reference_tolerance<T>();
   PaperExample<T> system;
   ReferenceFlow<PaperExample<T>> flow(system, tolerance);
   EXPECT_EQ(flow.tolerance(), tolerance);
@@ -80,7 +72,7 @@ TYPED_TEST(ReferenceFlowTest, ExtrapolationAgreesWithATighterRerunOnANonSeparabl
 
 TYPED_TEST(ReferenceFlowTest, WrappedSystemsUseTheExtrapolationFlow) {
   using T = TypeParam;
-  const T tolerance = reference_tolerance<T>();
+  const T tolerance = testing::reference_tolerance<T>();
   WrappedOscillator<T> wrapped;
   wrapped.inner.omega = 2;
   ReferenceFlow<WrappedOscillator<T>> flow(wrapped, tolerance);
