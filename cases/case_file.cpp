@@ -26,6 +26,13 @@ std::vector<std::string> claim_names() { return claim_ids(); }
 
 namespace {
 
+// The value of a decimal "0.5" or a fraction "1/2", to compare two of them.
+long double fraction_value(const std::string& text) {
+  auto slash = text.find('/');
+  if (slash == std::string::npos) return std::stold(text);
+  return std::stold(text.substr(0, slash)) / std::stold(text.substr(slash + 1));
+}
+
 std::string join(const std::vector<std::string>& items) {
   std::string out;
   for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
@@ -141,12 +148,15 @@ DiscretizationSpec read_discretization(Reader reader, int dimension, bool allow_
                                                          : std::vector<std::string>{"qxq"});
   if (spec.formalism == "tq") {
     TQSpec tq;
-    tq.psi = reader.one_of("psi", {"linear", "taylor"});
+    tq.psi = reader.one_of("psi", {"linear", "taylor", "exact"});
     if (tq.psi == "taylor") tq.r = reader.integer("r", 1, 8);
     if (tq.psi != "taylor" && reader.has("r"))
       reader.fail("r", "a degree r is taken only by psi \"taylor\", not \"" + tq.psi + "\"");
     tq.theta = reader.fraction("theta");
-    tq.lagrangian = reader.one_of("lagrangian", {"quadrature", "pullback"});
+    tq.lagrangian = reader.one_of("lagrangian", {"quadrature", "pullback", "exact"});
+    if (tq.lagrangian == "exact" && tq.psi != "exact")
+      reader.fail("lagrangian", "\"exact\" is the action along the exact psi: needs psi \"exact\", not \"" +
+                                    tq.psi + "\"");
     if (tq.lagrangian == "quadrature") tq.nodes = reader.integer("nodes", 1, 64);
     if (tq.lagrangian == "pullback")
       tq.qxq = std::make_shared<DiscretizationSpec>(read_discretization(reader.object("qxq"), dimension, false));
@@ -249,13 +259,37 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
       throw CaseError(file, where, id + " is a claim about discretizations of TQ: needs discretization.formalism \"tq\"");
     if (tq && qxq_claim_ids().count(id))
       throw CaseError(file, where, id + " is a claim about Q×Q discrete Lagrangians: needs discretization.formalism \"qxq\"");
-    if (id == "contact-order" && !spec.compare_discretization)
-      throw CaseError(file, where, "contact-order needs compare_discretization");
+    bool pair = id == "contact-order" || id == "past-future-symmetry";
+    if (pair && !spec.compare_discretization)
+      throw CaseError(file, where, id + " needs compare_discretization");
+    if (pair && tq && spec.compare_discretization->tq &&
+        fraction_value(spec.compare_discretization->tq->theta) !=
+            fraction_value(spec.discretization.tq->theta))
+      throw CaseError(file, where, id + " compares two discretizations with the same α± (Thm 5.4): "
+                                   "compare_discretization.theta must equal discretization.theta");
+    auto is_exact = [](const DiscretizationSpec* d) {
+      return d && d->tq && d->tq->lagrangian == "exact";
+    };
+    const DiscretizationSpec* compare = spec.compare_discretization ? &*spec.compare_discretization : nullptr;
+    bool order_of_one = id == "order" || id == "global-order";
+    if ((order_of_one && is_exact(&spec.discretization)) ||
+        (pair && is_exact(&spec.discretization) && is_exact(compare)))
+      throw CaseError(file, where, id + " measures an order, and an exact discretization has none: "
+                                   "its claim is exact-discretization");
     if (id == "qxq-tq-equivalence" && (!tq || spec.discretization.tq->lagrangian != "pullback"))
       throw CaseError(file, where, "qxq-tq-equivalence needs a TQ discretization with lagrangian \"pullback\"");
   }
-  if (spec.past_discretization && spec.discretization.formalism != "qxq")
-    reader.fail("past_discretization", "a mismatched DEL needs Q×Q discretizations");
+  if (spec.past_discretization && spec.past_discretization->formalism != spec.discretization.formalism)
+    reader.fail("past_discretization", "expected the same formalism as discretization");
+  if (spec.past_discretization && spec.discretization.formalism == "tq") {
+    // A mismatched TQ pair is only measured by past-future-symmetry (its negative control).
+    for (const auto& id : spec.claims)
+      if (id != "past-future-symmetry")
+        reader.fail("past_discretization", "a TQ past_discretization is used by past-future-symmetry "
+                                           "only, not by " + id);
+    if (fraction_value(spec.past_discretization->tq->theta) != fraction_value(spec.discretization.tq->theta))
+      reader.fail("past_discretization", "expected the same theta as discretization");
+  }
   if (spec.compare_discretization && spec.compare_discretization->formalism != spec.discretization.formalism)
     reader.fail("compare_discretization", "expected the same formalism as discretization");
   if (reader.has("expect")) {

@@ -28,7 +28,7 @@ inline const std::vector<std::string>& claim_ids() {
   static const std::vector<std::string> ids = {
       "global-order",       "lagrangian-order",    "legendre-order", "twin-term-invariance",
       "mismatched-legendre", "order",              "contact-order",  "qxq-tq-equivalence",
-      "existence-uniqueness"};
+      "existence-uniqueness", "exact-discretization", "past-future-symmetry"};
   return ids;
 }
 
@@ -42,7 +42,7 @@ inline const std::set<std::string>& qxq_claim_ids() {
 // Claims stated for discretizations of TQ only (paper §4–6).
 inline const std::set<std::string>& tq_claim_ids() {
   static const std::set<std::string> ids = {"order", "contact-order", "qxq-tq-equivalence",
-                                            "existence-uniqueness"};
+                                            "existence-uniqueness", "exact-discretization", "past-future-symmetry"};
   return ids;
 }
 

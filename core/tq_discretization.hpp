@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/discrete_lagrangian.hpp"
+#include "core/exact_curve.hpp"
 #include "core/small_linear_algebra.hpp"
 #include "core/tape.hpp"
 #include "core/taylor_curve.hpp"
@@ -25,22 +26,27 @@ namespace vivv {
 enum class CurveFamily {
   linear,  // psi = q + t·w
   taylor,  // psi = Σ_{k<=r} t^k/k! q^(k)(0), the solution through v to degree r
+  exact,   // psi = q(t), the solution through v (core/exact_curve.hpp)
 };
 
 enum class TQLagrangianKind {
   quadrature,  // L_h(v) = ∫_{α−}^{α+} L(psi, dpsi/dt) dt by m-point Gauss–Legendre
   pullback,    // L_h(v) = L_d(d−(v), d+(v); h) for a Q×Q discrete Lagrangian (paper §6)
+  exact,       // L_h(v) = ∫_{α−}^{α+} L(psi, dpsi/dt) dt to the curve's tolerance: Gauss–Legendre
+               // on every Taylor piece of the exact psi (paper Definition 5.1)
 };
 
 template <class T>
 struct TQDiscretization {
   CurveFamily psi = CurveFamily::linear;
   int r = 1;  // degree of the taylor family
-  // a(q, w) = M⁻¹ (dL/dq − (d²L/dw dq) w), recorded once (core/euler_lagrange_tape.hpp): taylor.
+  // a(q, w) = M⁻¹ (dL/dq − (d²L/dw dq) w), recorded once (core/euler_lagrange_tape.hpp): taylor, exact.
   std::shared_ptr<const Tape<T>> acceleration;
+  T curve_tolerance = 0;  // step tolerance of the exact psi's Taylor pieces
   T theta = 0;  // α− = −θh, α+ = (1 − θ)h
   TQLagrangianKind lagrangian = TQLagrangianKind::quadrature;
-  std::vector<T> nodes, weights;  // Gauss–Legendre on [0, 1], weights summing to 1 (quadrature)
+  std::vector<T> nodes, weights;  // Gauss–Legendre on [0, 1], weights summing to 1 (quadrature;
+                                  // exact: the rule used on each Taylor piece)
   QxQDiscretization<T> qxq;       // the Q×Q discrete Lagrangian (pullback)
   std::optional<TwinTerm<T>> twin;  // + a·h^s·(d+(v) − d−(v))
 };
@@ -51,16 +57,32 @@ struct TangentPoint {
   Point<S, n> q, w;
 };
 
-// The curve segment t ↦ psi(h, t, v) through v as the polynomial psi = Σ_k c_k t^k:
-// linear: (c_0, c_1) = (q, w); taylor-r: c_k = q^(k)(0)/k!, k <= r, by Taylor-mode
-// AD of the Euler–Lagrange acceleration (core/taylor_curve.hpp), in scalar S.
-// Built once per v; at(t) evaluates it as often as needed.
+// The curve segment t ↦ psi(h, t, v) through v, for t in [α−, α+]: linear and
+// taylor-r as the polynomial psi = Σ_k c_k t^k with (c_0, c_1) = (q, w) (linear)
+// or c_k = q^(k)(0)/k!, k <= r, by Taylor-mode AD of the Euler–Lagrange
+// acceleration (taylor-r, core/taylor_curve.hpp); exact as the Taylor pieces of
+// the solution through v (core/exact_curve.hpp). In scalar S; built once per
+// (v, h), at(t) evaluates it as often as needed.
 template <class S, int n>
 class CurveSegment {
  public:
+  using Leaf = leaf_scalar_t<S>;
+
   template <class T>
-  CurveSegment(const TQDiscretization<T>& d, const TangentPoint<S, n>& v) {
+  CurveSegment(const TQDiscretization<T>& d, const TangentPoint<S, n>& v, const T& h)
+      : alpha_minus_(-d.theta * h), alpha_plus_((1 - d.theta) * h) {
     switch (d.psi) {
+      case CurveFamily::exact: {
+        if (!d.acceleration)
+          throw std::logic_error(
+              "curve_segment: psi exact needs the Euler–Lagrange tape (acceleration)");
+        std::vector<S> q(v.q.begin(), v.q.end()), w(v.w.begin(), v.w.end());
+        using std::max;
+        using std::min;
+        exact_ = std::make_shared<const ExactCurve<S, T>>(*d.acceleration, q, w, min(T(0), alpha_minus_),
+                                                          max(T(0), alpha_plus_), d.curve_tolerance);
+        return;
+      }
       case CurveFamily::linear:
         position_ = {v.q, v.w};
         break;
@@ -90,9 +112,24 @@ class CurveSegment {
   template <class U>
   TangentPoint<S, n> at(const U& t) const {
     TangentPoint<S, n> point;
+    if (exact_) {
+      if constexpr (std::is_same_v<U, Leaf>) {
+        std::vector<S> q, w;
+        exact_->at(t, q, w);
+        for (int i = 0; i < n; ++i) point.q[i] = std::move(q[i]), point.w[i] = std::move(w[i]);
+        return point;
+      } else {
+        throw std::logic_error("curve_segment: psi exact is evaluated at constant times only");
+      }
+    }
     point.q = horner(position_, t);
     point.w = horner(velocity_, t);
     return point;
+  }
+
+  // The times in (α−, α+) where psi is not one polynomial: the exact psi's piece boundaries.
+  std::vector<Leaf> breakpoints() const {
+    return exact_ ? exact_->breakpoints(alpha_minus_, alpha_plus_) : std::vector<Leaf>{};
   }
 
  private:
@@ -113,15 +150,18 @@ class CurveSegment {
     return sum;
   }
 
-  std::vector<Point<S, n>> position_;  // c_0 … c_degree
+  Leaf alpha_minus_, alpha_plus_;
+  std::vector<Point<S, n>> position_;  // c_0 … c_degree (linear, taylor)
   std::vector<Point<S, n>> velocity_;  // k c_k, k = 1 … degree
+  std::shared_ptr<const ExactCurve<S, Leaf>> exact_;  // exact
 };
 
 // psi(h, t, v) and dpsi/dt: linear (q + t·w, w); taylor-r the degree-r Taylor
-// polynomial of the solution through v and its derivative.
+// polynomial of the solution through v and its derivative; exact the solution.
 template <class S, int n, class T>
-TangentPoint<S, n> curve_segment(const TQDiscretization<T>& d, const TangentPoint<S, n>& v, const S& t) {
-  return CurveSegment<S, n>(d, v).at(t);
+TangentPoint<S, n> curve_segment(const TQDiscretization<T>& d, const TangentPoint<S, n>& v,
+                                 const T& h, const S& t) {
+  return CurveSegment<S, n>(d, v, h).at(t);
 }
 
 // d−(v) = psi(h, α−, v), on a curve segment already built through v.
@@ -139,18 +179,19 @@ Point<S, n> d_plus(const TQDiscretization<T>& d, const CurveSegment<S, n>& curve
 // d−(v) = psi(h, α−, v).
 template <class S, int n, class T>
 Point<S, n> d_minus(const TQDiscretization<T>& d, const TangentPoint<S, n>& v, const T& h) {
-  return d_minus<S, n>(d, CurveSegment<S, n>(d, v), h);
+  return d_minus<S, n>(d, CurveSegment<S, n>(d, v, h), h);
 }
 
 // d+(v) = psi(h, α+, v).
 template <class S, int n, class T>
 Point<S, n> d_plus(const TQDiscretization<T>& d, const TangentPoint<S, n>& v, const T& h) {
-  return d_plus<S, n>(d, CurveSegment<S, n>(d, v), h);
+  return d_plus<S, n>(d, CurveSegment<S, n>(d, v, h), h);
 }
 
 // The blown-up discrete Lagrangian L̂_h(v) = L_h(v)/h (paper §2.4, stage 1), on
 // the curve segment through v:
 // quadrature: Σ_i b_i L(psi(α− + c_i h), dpsi/dt(α− + c_i h));
+// exact: the same rule on every Taylor piece [a, b] of the exact psi, weighted by (b − a)/h;
 // pullback: L_d(d−(v), d+(v); h)/h; twin term: + a·h^(s−1)·(d+(v) − d−(v)).
 template <LagrangianSystem System, class S>
 S blown_up_lagrangian(const System& system, const TQDiscretization<typename System::Scalar>& d,
@@ -167,6 +208,19 @@ S blown_up_lagrangian(const System& system, const TQDiscretization<typename Syst
         value += d.weights[i] * system.lagrangian(point.q, point.w);
       }
       break;
+    case TQLagrangianKind::exact: {
+      std::vector<T> ends{T(-d.theta * h)};
+      for (const T& t : curve.breakpoints()) ends.push_back(t);
+      ends.push_back(T((1 - d.theta) * h));
+      for (std::size_t piece = 0; piece + 1 < ends.size(); ++piece) {
+        const T length = ends[piece + 1] - ends[piece];
+        for (std::size_t i = 0; i < d.nodes.size(); ++i) {
+          auto point = curve.at(T(ends[piece] + d.nodes[i] * length));
+          value += T(d.weights[i] * length / h) * system.lagrangian(point.q, point.w);
+        }
+      }
+      break;
+    }
     case TQLagrangianKind::pullback:
       value = discrete_lagrangian(system, d.qxq, d_minus<S, n>(d, curve, h),
                                   d_plus<S, n>(d, curve, h), h) / h;
@@ -186,7 +240,7 @@ S blown_up_lagrangian(const System& system, const TQDiscretization<typename Syst
 template <LagrangianSystem System, class S>
 S blown_up_lagrangian(const System& system, const TQDiscretization<typename System::Scalar>& d,
                       const TangentPoint<S, System::dimension>& v, const typename System::Scalar& h) {
-  return blown_up_lagrangian(system, d, CurveSegment<S, System::dimension>(d, v), h);
+  return blown_up_lagrangian(system, d, CurveSegment<S, System::dimension>(d, v, h), h);
 }
 
 // The TQ discrete Legendre transforms at v (DESIGN §1.3), with N∓ = [−A⁻¹B; I]
@@ -210,7 +264,7 @@ TQLegendre<S, System::dimension> tq_legendre(const System& system,
     jet_v.q[i] = J::variable(v.q[i], i);
     jet_v.w[i] = J::variable(v.w[i], n + i);
   }
-  const CurveSegment<J, n> curve(d, jet_v);
+  const CurveSegment<J, n> curve(d, jet_v, h);
   J lagrangian = blown_up_lagrangian(system, d, curve, h);
   Point<J, n> minus = d_minus<J, n>(d, curve, h), plus = d_plus<J, n>(d, curve, h);
   // Blocks of Dd− = [A B] and Dd+ = [C D].

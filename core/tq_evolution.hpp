@@ -104,4 +104,86 @@ std::vector<State<typename System::Scalar, System::dimension>> tq_trajectory(
   return trajectory;
 }
 
+// The blown-up critical point (v, ṽ) at fixed end points (paper §2.4, proof of
+// Theorem 5.4): d−(v) = q_minus and d+(ṽ) = q_plus are held, the connection
+// d+(v) = d−(ṽ) is free, and S = L_h(v) + L_h(ṽ) is stationary. The past
+// segment v may use another discretization than the future one ṽ (a
+// mismatched pair, which breaks the past–future symmetry); both need the same θ. With
+// q = q_minus + h ζ and q̃ = q_minus + h ζ̃, the unknowns x = (ζ, w, ζ̃, w̃) solve
+//   (d−(v) − q_minus)/h = 0,   (d+(ṽ) − q_plus)/h = 0,
+//   (d+(v) − d−(ṽ))/h = 0,     P+(v) − P−(ṽ) = 0,
+// well conditioned as h → 0, where with z = (q_plus − q_minus)/h the solution is
+// w = w̃ = z/2, ζ = θ z/2, ζ̃ = (1 + θ) z/2 (the past–future symmetric point
+// v = ṽ of the h = 0 principle): Newton starts there.
+template <class T, int n>
+struct TQCriticalPair {
+  State<T, n> v, v_next;  // v and ṽ
+  SolveReport<T> report;
+};
+
+template <LagrangianSystem System>
+TQCriticalPair<typename System::Scalar, System::dimension> tq_critical_pair(
+    const System& system, const TQDiscretization<typename System::Scalar>& past,
+    const TQDiscretization<typename System::Scalar>& future,
+    const Vector<typename System::Scalar, System::dimension>& q_minus,
+    const Vector<typename System::Scalar, System::dimension>& q_plus, const typename System::Scalar& h,
+    const NewtonOptions& options = {}) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  constexpr int m = 4 * n;
+  using J = Jet<T, m>;
+  using std::max;
+  if (past.theta != future.theta)
+    throw std::invalid_argument("tq_critical_pair: the past and future discretizations need the same θ");
+  const Vector<T, n> z = (q_plus - q_minus) / h;
+  Vector<T, m> x;
+  for (int i = 0; i < n; ++i) {
+    x[i] = past.theta * z[i] / 2;
+    x[n + i] = z[i] / 2;
+    x[2 * n + i] = (1 + past.theta) * z[i] / 2;
+    x[3 * n + i] = z[i] / 2;
+  }
+  // As in tq_step: the configuration blocks divide differences of points by h.
+  Vector<T, m> rounding_scale = Vector<T, m>::Ones();
+  const T point_scale = max(T(1), T(max(max_norm<T, n>(q_minus), max_norm<T, n>(q_plus)) / h));
+  for (int i = 0; i < n; ++i) rounding_scale[i] = rounding_scale[2 * n + i] = point_scale;
+  auto point_of = [&](const auto& at, int offset) {
+    using S = std::decay_t<decltype(at[0])>;
+    TangentPoint<S, n> point;
+    for (int i = 0; i < n; ++i) {
+      point.q[i] = q_minus[i] + h * at[offset + i];
+      point.w[i] = at[offset + n + i];
+    }
+    return point;
+  };
+  TQCriticalPair<T, n> pair;
+  pair.report = newton_solve<T, m>(
+      x,
+      [&](const Vector<T, m>& at, Vector<T, m>& residual, Matrix<T, m, m>& jacobian) {
+        std::array<J, m> jet_x;
+        for (int i = 0; i < m; ++i) jet_x[i] = J::variable(at[i], i);
+        auto at_v = tq_legendre(system, past, point_of(jet_x, 0), h);
+        auto at_next = tq_legendre(system, future, point_of(jet_x, 2 * n), h);
+        std::array<J, m> r;
+        for (int i = 0; i < n; ++i) {
+          r[i] = (at_v.d_minus[i] - q_minus[i]) / h;
+          r[n + i] = (at_next.d_plus[i] - q_plus[i]) / h;
+          r[2 * n + i] = (at_v.d_plus[i] - at_next.d_minus[i]) / h;
+          r[3 * n + i] = at_v.p_plus[i] - at_next.p_minus[i];
+        }
+        for (int i = 0; i < m; ++i) {
+          residual[i] = r[i].value;
+          for (int j = 0; j < m; ++j) jacobian(i, j) = r[i].gradient[j];
+        }
+      },
+      options, rounding_scale);
+  for (int i = 0; i < n; ++i) {
+    pair.v.q[i] = q_minus[i] + h * x[i];
+    pair.v.w[i] = x[n + i];
+    pair.v_next.q[i] = q_minus[i] + h * x[2 * n + i];
+    pair.v_next.w[i] = x[3 * n + i];
+  }
+  return pair;
+}
+
 }  // namespace vivv

@@ -54,17 +54,24 @@ T from_fraction(const std::string& text) {
   return from_decimal<T>(text.substr(0, slash)) / from_decimal<T>(text.substr(slash + 1));
 }
 
-// The TQ discretization a case file describes, in scalar T.
+// The TQ discretization a case file describes, in scalar T; an exact psi is
+// computed to step tolerance `curve_tolerance`, and the exact action by
+// p/2 + 4 Gauss–Legendre nodes on each of its Taylor pieces (p its order, as
+// for the exact discrete Lagrangian of references/exact_discrete_lagrangian.hpp).
 template <class T>
-TQDiscretization<T> make_tq_discretization(const DiscretizationSpec& spec) {
+TQDiscretization<T> make_tq_discretization(const DiscretizationSpec& spec, const T& curve_tolerance) {
   const TQSpec& tq = *spec.tq;
   TQDiscretization<T> d;
-  d.psi = tq.psi == "taylor" ? CurveFamily::taylor : CurveFamily::linear;
+  d.psi = tq.psi == "taylor" ? CurveFamily::taylor
+          : tq.psi == "exact" ? CurveFamily::exact
+                              : CurveFamily::linear;
   d.r = tq.psi == "taylor" ? tq.r : 1;
+  d.curve_tolerance = curve_tolerance;
   d.theta = from_fraction<T>(tq.theta);
-  if (tq.lagrangian == "quadrature") {
-    d.lagrangian = TQLagrangianKind::quadrature;
-    auto rule = gauss_legendre<T>(tq.nodes);
+  if (tq.lagrangian == "quadrature" || tq.lagrangian == "exact") {
+    d.lagrangian = tq.lagrangian == "exact" ? TQLagrangianKind::exact : TQLagrangianKind::quadrature;
+    auto rule = gauss_legendre<T>(tq.lagrangian == "exact" ? exact_curve_order(curve_tolerance) / 2 + 4
+                                                           : tq.nodes);
     d.nodes = rule.nodes;
     d.weights = rule.weights;
   } else {
@@ -78,31 +85,37 @@ TQDiscretization<T> make_tq_discretization(const DiscretizationSpec& spec) {
 // The TQ discretization a case file describes for `system`: as above, with the
 // Euler–Lagrange tape a(q, w) of its L recorded for a taylor psi.
 template <LagrangianSystem System>
-TQDiscretization<typename System::Scalar> make_tq_discretization(const DiscretizationSpec& spec,
-                                                                 const System& system) {
-  auto d = make_tq_discretization<typename System::Scalar>(spec);
-  if (d.psi == CurveFamily::taylor) {
+TQDiscretization<typename System::Scalar> make_tq_discretization(
+    const DiscretizationSpec& spec, const System& system, const typename System::Scalar& curve_tolerance) {
+  auto d = make_tq_discretization<typename System::Scalar>(spec, curve_tolerance);
+  if (d.psi != CurveFamily::linear) {
     if constexpr (TapeRecordable<System>) {
       d.acceleration =
           std::make_shared<const Tape<typename System::Scalar>>(euler_lagrange_tape(system));
     } else {
       throw std::invalid_argument(
-          std::string("psi \"taylor\" needs a Lagrangian that can be recorded on a tape; ") +
+          "psi \"" + spec.tq->psi + "\" needs a Lagrangian that can be recorded on a tape; " +
           System::name + "'s cannot");
     }
   }
   return d;
 }
 
+// The order of an exact part of a discretization: more than any sweep can measure.
+constexpr int unbounded_order = 1000;
+
 // Order r of a TQ discretization: its order of contact with the exact one
 // (Definition 5.4), the lower of the curve's and the Lagrangian's. A linear
-// psi agrees with the solution to O(t²): r = 1; a taylor-r psi to O(t^{r+1}): r.
+// psi agrees with the solution to O(t²): r = 1; a taylor-r psi to O(t^{r+1}): r;
+// the exact psi and the exact action are unbounded.
 template <class T>
 int nominal_order(const TQDiscretization<T>& d) {
-  int psi_order = d.psi == CurveFamily::taylor ? d.r : 1;
-  int lagrangian_order = d.lagrangian == TQLagrangianKind::quadrature
-                             ? 2 * static_cast<int>(d.nodes.size())
-                             : d.qxq.nominal_order();
+  int psi_order = d.psi == CurveFamily::taylor ? d.r
+                  : d.psi == CurveFamily::exact ? unbounded_order
+                                                : 1;
+  int lagrangian_order = d.lagrangian == TQLagrangianKind::quadrature ? 2 * static_cast<int>(d.nodes.size())
+                         : d.lagrangian == TQLagrangianKind::exact    ? unbounded_order
+                                                                      : d.qxq.nominal_order();
   if (d.twin) lagrangian_order = std::min(lagrangian_order, d.twin->power);
   return std::min(psi_order, lagrangian_order);
 }
@@ -129,6 +142,7 @@ struct CaseContext {
   DelScheme<T> scheme;                    // formalism "qxq"
   std::optional<TQDiscretization<T>> tq;  // formalism "tq"
   std::optional<TQDiscretization<T>> tq_compare;  // contact-order's second discretization
+  std::optional<TQDiscretization<T>> tq_past;     // past-future-symmetry: a mismatched past segment
   double order_tolerance;
   std::function<void(const std::string&)> progress;
 
@@ -144,14 +158,18 @@ struct CaseContext {
       initial.w[i] = from_decimal<T>(spec.w[i]);
     }
     if (spec.discretization.formalism == "tq") {
-      tq = make_tq_discretization(spec.discretization, system);
+      // An exact psi runs at the reference's step tolerance.
+      T curve_tolerance = reference.tolerance() / 1000;
+      tq = make_tq_discretization(spec.discretization, system, curve_tolerance);
       if (spec.compare_discretization)
-        tq_compare = make_tq_discretization(*spec.compare_discretization, system);
+        tq_compare = make_tq_discretization(*spec.compare_discretization, system, curve_tolerance);
+      if (spec.past_discretization)
+        tq_past = make_tq_discretization(*spec.past_discretization, system, curve_tolerance);
     }
     scheme.future = make_discretization<T>(spec.discretization);
-    scheme.past = spec.past_discretization ? make_discretization<T>(*spec.past_discretization)
-                                           : scheme.future;
-    scheme.mismatched = spec.past_discretization.has_value();
+    scheme.past = spec.past_discretization && !tq_past ? make_discretization<T>(*spec.past_discretization)
+                                                       : scheme.future;
+    scheme.mismatched = spec.past_discretization.has_value() && !tq_past;
     // The initial state must be inside the Lagrangian's domain and regular
     // there; otherwise this throws SingularLagrangianError naming the state.
     euler_lagrange_acceleration(system, initial.q, initial.w);

@@ -7,8 +7,10 @@
 #include <tuple>
 #include <vector>
 
+#include "harness/claims/exact_discretization.hpp"
 #include "harness/claims/global_order.hpp"
 #include "harness/claims/local_consistency.hpp"
+#include "harness/claims/past_future_symmetry.hpp"
 #include "harness/claims/tq_claims.hpp"
 #include "harness/claims/twin_term.hpp"
 
@@ -17,7 +19,7 @@ namespace vivv {
 using ClaimRegistry =
     std::tuple<GlobalOrderClaim, LagrangianOrderClaim, LegendreOrderClaim, TwinTermInvarianceClaim,
                MismatchedLegendreClaim, LocalOrderClaim, ContactOrderClaim, QxQTQEquivalenceClaim,
-               ExistenceUniquenessClaim>;
+               ExistenceUniquenessClaim, ExactDiscretizationClaim, PastFutureSymmetryClaim>;
 
 struct ClaimInfo {
   std::string id, source, prediction;

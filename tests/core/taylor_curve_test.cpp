@@ -11,6 +11,7 @@
 #include "core/tq_discretization.hpp"
 #include "harness/claims.hpp"
 #include "references/reference_flow.hpp"
+#include "references/taylor_variational_flow.hpp"
 #include "tests/test_scalars.hpp"
 
 namespace vivv {
@@ -83,7 +84,7 @@ TYPED_TEST(TaylorCurveTest, NestedJetsDifferentiatePsiExactly) {
   auto d = this->taylor(system, 3);
   T q = T(7) / 10, w = T(-1) / 3, t = T(3) / 8, k = system.k;
   TangentPoint<JJ, 1> v{{JJ::variable(J::variable(q, 0), 0)}, {JJ::variable(J::variable(w, 1), 1)}};
-  TangentPoint<JJ, 1> point = curve_segment<JJ, 1>(d, v, JJ(J(t)));
+  TangentPoint<JJ, 1> point = curve_segment<JJ, 1>(d, v, t, JJ(J(t)));
   T s = sin(q), c = cos(q), t2 = t * t, t3 = t2 * t;
   const JJ& psi = point.q[0];
   T tolerance = this->working_tolerance() * 4;
@@ -120,7 +121,7 @@ TYPED_TEST(TaylorCurveTest, TaylorCurveMatchesTheReferenceFlowToOrderRPlusOne) {
     T previous_position = 0, previous_velocity = 0;
     for (int halvings = 0; halvings < 4; ++halvings) {
       T t = T(1) / (16 << halvings);
-      auto psi = curve_segment<T, 1>(d, v, t);
+      auto psi = curve_segment<T, 1>(d, v, t, t);
       auto exact = flow.advance(start, t);
       T position = abs(T(psi.q[0] - exact.q[0])), velocity = abs(T(psi.w[0] - exact.w[0]));
       if (halvings > 0) {
@@ -142,9 +143,53 @@ TYPED_TEST(TaylorCurveTest, TaylorOneIsTheLinearSegment) {
   auto d = this->taylor(system, 1);
   TangentPoint<T, 1> v{{T(1) / 3}, {T(5) / 4}};
   T t = T(3) / 16;
-  auto a = curve_segment<T, 1>(linear, v, t), b = curve_segment<T, 1>(d, v, t);
+  auto a = curve_segment<T, 1>(linear, v, t, t), b = curve_segment<T, 1>(d, v, t, t);
   EXPECT_EQ(a.q[0], b.q[0]);
   EXPECT_EQ(a.w[0], b.w[0]);
+}
+
+// The exact psi is the solution through v: on [−3/2, 5/2] (several Taylor pieces each way) it
+// equals the closed-form pendulum flow, and its derivatives with respect to v (through jets)
+// equal the flow's Jacobian from the variational equations, to the curve's tolerance.
+// Negative control: a degree too low for the tolerance (a looser curve) is caught.
+TYPED_TEST(TaylorCurveTest, ExactCurveIsTheFlowWithItsJacobian) {
+  using T = TypeParam;
+  using J = Jet<T, 2>;
+  using std::abs;
+  using std::max;
+  Pendulum<T> system;
+  const T tolerance = testing::reference_tolerance<T>();
+  auto d = this->taylor(system, 1);
+  d.psi = CurveFamily::exact;
+  d.curve_tolerance = tolerance / 1000;
+  d.theta = T(3) / 8;  // α− = −3h/8, α+ = 5h/8
+  const T h = 4;
+  ReferenceFlow<Pendulum<T>> flow(system, tolerance);
+  TaylorVariationalFlow<Pendulum<T>> variational(system, tolerance / 1000);
+  State<T, 1> start{Vector<T, 1>(T(11) / 10), Vector<T, 1>(T(1) / 4)};
+  TangentPoint<J, 1> v{{J::variable(start.q[0], 0)}, {J::variable(start.w[0], 1)}};
+  CurveSegment<J, 1> curve(d, v, h);
+  EXPECT_GE(curve.breakpoints().size(), 2u);  // more than one piece
+  T worst = 0, worst_jacobian = 0;
+  for (int i = -6; i <= 10; ++i) {
+    T t = T(i) / 4;
+    auto point = curve.at(t);
+    auto exact = flow.advance(start, t);
+    auto jacobian = variational.advance(start, t).jacobian;
+    worst = max(worst, max(abs(T(point.q[0].value - exact.q[0])), abs(T(point.w[0].value - exact.w[0]))));
+    for (int j = 0; j < 2; ++j)
+      worst_jacobian = max(worst_jacobian, max(abs(T(point.q[0].gradient[j] - jacobian(0, j))),
+                                               abs(T(point.w[0].gradient[j] - jacobian(1, j)))));
+  }
+  EXPECT_LE(worst, 10 * tolerance);
+  EXPECT_LE(worst_jacobian, 10 * tolerance);
+  // Negative control: the curve at step tolerance 1/2 (order 2) is visibly not the flow.
+  d.curve_tolerance = T(1) / 2;
+  CurveSegment<T, 1> loose(d, TangentPoint<T, 1>{{start.q[0]}, {start.w[0]}}, h);
+  T loose_error = 0;
+  for (int i = -6; i <= 10; ++i)
+    loose_error = max(loose_error, abs(T(loose.at(T(T(i) / 4)).q[0] - flow.advance(start, T(T(i) / 4)).q[0])));
+  EXPECT_GT(loose_error, 100 * tolerance);
 }
 
 // The verdict of the local-order claim on the pendulum with a taylor-r psi.
