@@ -35,7 +35,7 @@ inline const std::vector<std::string>& claim_ids() {
 // Claims stated for Q×Q discrete Lagrangians only.
 inline const std::set<std::string>& qxq_claim_ids() {
   static const std::set<std::string> ids = {"lagrangian-order", "legendre-order",
-                                            "twin-term-invariance", "mismatched-legendre"};
+                                            "mismatched-legendre"};
   return ids;
 }
 

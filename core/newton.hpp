@@ -24,6 +24,9 @@ struct SolveReport {
   T residual = 0;    // max norm of F at the returned iterate
   T correction = 0;  // max norm of the last Newton correction
   bool stalled = false;  // stopped at the rounding level of the residual (see newton_solve)
+  // Every correction at most half the one before, until the rounding level: the start lies
+  // where Newton contracts (its quadratic regime), not merely somewhere it happens to converge.
+  bool contracting = true;
   std::string failure;
 };
 
@@ -73,6 +76,8 @@ SolveReport<T> newton_solve(Vector<T, m>& x, Evaluate&& evaluate, const NewtonOp
     using std::pow;
     bool stalled = report.iterations > 2 && report.correction >= previous_correction / 2 &&
                    report.correction <= pow(epsilon<T>(), T(3) / 4) * std::max<T>(T(1), max_norm<T, m>(x));
+    if (report.iterations > 1 && report.correction > previous_correction / 2 && !small && !stalled)
+      report.contracting = false;
     previous_correction = report.correction;
     if (small || stalled) {
       evaluate(x, residual, jacobian);

@@ -47,10 +47,12 @@ struct TQStep {
 
 // F_h(v) by Newton on the blown-up equations from the h = 0 solution ṽ = v.
 // The report says whether it converged; callers that need the step use
-// require_converged.
+// require_converged. A mismatched step takes d+ and P+ at v from `past` and
+// d− and P− at ṽ from `future` (the TQ form of the mismatched DEL, paper §2.3).
 template <LagrangianSystem System>
 TQStep<typename System::Scalar, System::dimension> tq_step(
-    const System& system, const TQDiscretization<typename System::Scalar>& d,
+    const System& system, const TQDiscretization<typename System::Scalar>& past,
+    const TQDiscretization<typename System::Scalar>& future,
     const State<typename System::Scalar, System::dimension>& v, const typename System::Scalar& h,
     const NewtonOptions& options = {}) {
   using T = typename System::Scalar;
@@ -59,7 +61,7 @@ TQStep<typename System::Scalar, System::dimension> tq_step(
   using J = Jet<T, m>;
   TangentPoint<T, n> point;
   for (int i = 0; i < n; ++i) point.q[i] = v.q[i], point.w[i] = v.w[i];
-  auto at_v = tq_legendre(system, d, point, h);
+  auto at_v = tq_legendre(system, past, point, h);
   Vector<T, m> x;
   for (int i = 0; i < n; ++i) x[i] = v.w[i], x[n + i] = v.w[i];
   // The residual rounds at ε·|q|/h (its first block divides a difference of
@@ -73,7 +75,7 @@ TQStep<typename System::Scalar, System::dimension> tq_step(
       [&](const Vector<T, m>& at, Vector<T, m>& residual, Matrix<T, m, m>& jacobian) {
         std::array<J, m> jet_x;
         for (int i = 0; i < m; ++i) jet_x[i] = J::variable(at[i], i);
-        auto r = tq_residual(system, d, v, at_v, jet_x, h);
+        auto r = tq_residual(system, future, v, at_v, jet_x, h);
         for (int i = 0; i < m; ++i) {
           residual[i] = r[i].value;
           for (int j = 0; j < m; ++j) jacobian(i, j) = r[i].gradient[j];
@@ -87,21 +89,41 @@ TQStep<typename System::Scalar, System::dimension> tq_step(
   return step;
 }
 
-// N steps of F_h from v; a step whose solve fails is an error naming it.
+// F_h(v) of one discretization (past = future = d).
+template <LagrangianSystem System>
+TQStep<typename System::Scalar, System::dimension> tq_step(
+    const System& system, const TQDiscretization<typename System::Scalar>& d,
+    const State<typename System::Scalar, System::dimension>& v, const typename System::Scalar& h,
+    const NewtonOptions& options = {}) {
+  return tq_step(system, d, d, v, h, options);
+}
+
+// N steps of F_h from v (mismatched when past ≠ future); a step whose solve
+// fails is an error naming it.
 template <LagrangianSystem System>
 std::vector<State<typename System::Scalar, System::dimension>> tq_trajectory(
-    const System& system, const TQDiscretization<typename System::Scalar>& d,
+    const System& system, const TQDiscretization<typename System::Scalar>& past,
+    const TQDiscretization<typename System::Scalar>& future,
     const State<typename System::Scalar, System::dimension>& v, const typename System::Scalar& h,
     int steps) {
   using T = typename System::Scalar;
   std::vector<State<T, System::dimension>> trajectory{v};
   for (int k = 0; k < steps; ++k) {
-    auto step = tq_step(system, d, trajectory.back(), h);
+    auto step = tq_step(system, past, future, trajectory.back(), h);
     require_converged(step.report, "TQ step " + std::to_string(k + 1) + " of " +
                                        std::to_string(steps) + " with h = " + to_decimal<T>(h));
     trajectory.push_back(step.next);
   }
   return trajectory;
+}
+
+// N steps of F_h of one discretization d.
+template <LagrangianSystem System>
+std::vector<State<typename System::Scalar, System::dimension>> tq_trajectory(
+    const System& system, const TQDiscretization<typename System::Scalar>& d,
+    const State<typename System::Scalar, System::dimension>& v, const typename System::Scalar& h,
+    int steps) {
+  return tq_trajectory(system, d, d, v, h, steps);
 }
 
 // The blown-up critical point (v, ṽ) at fixed end points (paper §2.4, proof of
