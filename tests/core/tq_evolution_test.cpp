@@ -2,6 +2,8 @@
 
 #include "cases/systems.hpp"
 #include "core/del_evolution.hpp"
+#include "core/euler_lagrange_tape.hpp"
+#include "references/closed_forms.hpp"
 #include "references/gauss_legendre.hpp"
 #include "tests/test_scalars.hpp"
 
@@ -17,6 +19,20 @@ class TQEvolutionTest : public testing::ScalarTest<T> {
     d.lagrangian = TQLagrangianKind::pullback;
     d.qxq.rule = rule;
     d.qxq.twin = twin;
+    return d;
+  }
+  // Linear psi (or exact / taylor-r when `psi` says so) with an m-point Gauss–Legendre action.
+  static TQDiscretization<T> quadrature(const Pendulum<T>& system, CurveFamily psi, const T& theta, int nodes,
+                                        int r = 1) {
+    TQDiscretization<T> d;
+    d.psi = psi;
+    d.r = r;
+    d.theta = theta;
+    d.acceleration = std::make_shared<const Tape<T>>(euler_lagrange_tape(system));
+    d.curve_tolerance = testing::reference_tolerance<T>() / 1000;
+    auto rule = gauss_legendre<T>(nodes);
+    d.nodes = rule.nodes;
+    d.weights = rule.weights;
     return d;
   }
 };
@@ -87,6 +103,62 @@ TYPED_TEST(TQEvolutionTest, EvolutionIsNearIdentityForSmallSteps) {
     EXPECT_LT(distance, previous);
     previous = distance;
   }
+}
+
+// Theorem 5.3: the exact discretization (exact psi, its action by Gauss–Legendre on every
+// Taylor piece) evolves by the flow itself, here at the large step h = 1/2, against the
+// pendulum's closed form. Negative control: the exact psi with a 2-node action misses the
+// flow by more than a million times the exact discretization's error.
+TYPED_TEST(TQEvolutionTest, ExactDiscretizationEvolvesByTheFlow) {
+  using T = TypeParam;
+  Pendulum<T> system;
+  const T tolerance = testing::reference_tolerance<T>();
+  auto exact = this->quadrature(system, CurveFamily::exact, T(1) / 2, 1);
+  exact.lagrangian = TQLagrangianKind::exact;
+  auto rule = gauss_legendre<T>(exact_curve_order(exact.curve_tolerance) / 2 + 4);
+  exact.nodes = rule.nodes, exact.weights = rule.weights;
+  auto two_nodes = this->quadrature(system, CurveFamily::exact, T(1) / 2, 2);
+  State<T, 1> v{Vector<T, 1>(T(11) / 10), Vector<T, 1>(T(1) / 4)};
+  const T h = T(1) / 2;
+  auto step = tq_step(system, exact, v, h);
+  ASSERT_TRUE(step.report.converged) << step.report.failure;
+  State<T, 1> flow = pendulum_flow(system, v, h);
+  T error = state_distance(step.next, flow);
+  EXPECT_LE(error, 10 * tolerance);
+  auto broken = tq_step(system, two_nodes, v, h);
+  ASSERT_TRUE(broken.report.converged) << broken.report.failure;
+  EXPECT_GT(state_distance(broken.next, flow), 1000000 * std::max<T>(error, epsilon<T>()));
+}
+
+// Proof of Theorem 5.4: at fixed end points the critical pairs of linear psi and taylor-2
+// psi (order-1 contact) differ by O(h) with equal leading coefficients at v and ṽ, so
+// halving h halves Δw and quarters Δw − Δw̃. Negative control: a twin term on the past
+// segment only (a mismatched pair) leaves Δw − Δw̃ of order 1.
+TYPED_TEST(TQEvolutionTest, CriticalPairsHaveASymmetricResidual) {
+  using T = TypeParam;
+  using std::log2;
+  Pendulum<T> system;
+  auto linear = this->quadrature(system, CurveFamily::linear, T(0), 4);
+  auto taylor = this->quadrature(system, CurveFamily::taylor, T(0), 4, 2);
+  auto twin_past = linear;
+  twin_past.twin = TwinTerm<T>{{T(1)}, 1};
+  State<T, 1> start{Vector<T, 1>(T(11) / 10), Vector<T, 1>(T(1) / 4)};
+  auto measure = [&](const TQDiscretization<T>& past, const T& h) {
+    Vector<T, 1> q_minus = start.q, q_plus = pendulum_flow(system, start, T(2 * h)).q;
+    auto one = tq_critical_pair(system, past, linear, q_minus, q_plus, h);
+    auto two = tq_critical_pair(system, taylor, taylor, q_minus, q_plus, h);
+    EXPECT_TRUE(one.report.converged && two.report.converged);
+    T dw = two.v.w[0] - one.v.w[0], dw_next = two.v_next.w[0] - one.v_next.w[0];
+    return std::pair<T, T>{abs(dw), abs(T(dw - dw_next))};
+  };
+  T h = T(1) / 64;
+  auto [coarse, coarse_residual] = measure(linear, h);
+  auto [fine, fine_residual] = measure(linear, T(h / 2));
+  EXPECT_NEAR(static_cast<double>(log2(T(coarse / fine))), 1.0, 0.1);
+  EXPECT_NEAR(static_cast<double>(log2(T(coarse_residual / fine_residual))), 2.0, 0.1);
+  auto [mismatched, mismatched_residual] = measure(twin_past, h);
+  auto [mismatched_fine, mismatched_fine_residual] = measure(twin_past, T(h / 2));
+  EXPECT_NEAR(static_cast<double>(log2(T(mismatched_residual / mismatched_fine_residual))), 1.0, 0.1);
 }
 
 }  // namespace
