@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/scalar.hpp"
+#include "core/taylor_expansion.hpp"  // taylor_detail::set_mul, set_add
 
 namespace vivv {
 
@@ -77,9 +78,12 @@ class TaylorTrajectory {
     std::vector<T> y(count);
     for (int c = 0; c < count; ++c) {
       const T* coefficient = step.coefficients.data() + c * stride;
-      T sum = coefficient[step.order];
-      for (int k = step.order - 1; k >= 0; --k) sum = sum * tau + coefficient[k];
-      y[c] = sum;
+      T& sum = y[c];
+      sum = coefficient[step.order];
+      for (int k = step.order - 1; k >= 0; --k) {
+        taylor_detail::set_mul(sum, sum, tau);  // in place: no temporaries for MPFR
+        taylor_detail::set_add(sum, sum, coefficient[k]);
+      }
     }
     return y;
   }
