@@ -34,8 +34,8 @@ template <class S>
 struct leaf_scalar {
   using type = S;
 };
-template <class T, int N>
-struct leaf_scalar<Jet<T, N>> {
+template <class T, int N, int Order>
+struct leaf_scalar<Jet<T, N, Order>> {
   using type = typename leaf_scalar<T>::type;
 };
 template <class S>

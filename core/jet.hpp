@@ -4,6 +4,10 @@
 // respect to N independent variables, all exact in T (no finite differences).
 // Every elementary function u ↦ φ(u) propagates by the chain rule
 //   ∇φ(u) = φ'(u) ∇u,   ∇²φ(u) = φ'(u) ∇²u + φ''(u) ∇u ∇uᵀ.
+// Jet<T, N, 1> carries the value and gradient only (no Hessian): where only
+// first derivatives are used — the TQ Legendre transforms and the Newton
+// Jacobians of core/tq_evolution.hpp, often nested — it is N + 1 numbers
+// instead of 1 + N + N².
 // Systems write their Lagrangian once, templated on the scalar S; core/
 // evaluates it with S = Jet<T, 2n> to get dL/dq, dL/dw and the blocks of the
 // Hessian, and discrete Lagrangians the same way in (q_b, q_e).
@@ -17,11 +21,13 @@
 
 namespace vivv {
 
-template <class T, int N>
+template <class T, int N, int Order = 2>
 struct Jet {
+  static_assert(Order == 1 || Order == 2, "Jet: derivatives of order 1 or 2");
+  static constexpr int hessian_size = Order == 2 ? N * N : 0;
   T value = 0;
   std::array<T, N> gradient{};
-  std::array<T, N * N> hessian{};  // row-major, symmetric
+  std::array<T, hessian_size> hessian{};  // row-major, symmetric (Order 2 only)
 
   Jet() { clear_derivatives(); }
   Jet(const T& constant) : value(constant) { clear_derivatives(); }  // NOLINT: constants promote
@@ -48,32 +54,37 @@ struct Jet {
   Jet chain(const T& f0, const T& f1, const T& f2) const {
     Jet r(f0);
     for (int i = 0; i < N; ++i) r.gradient[i] = f1 * gradient[i];
-    for (int i = 0; i < N; ++i)
-      for (int j = 0; j < N; ++j)
-        r.hessian[i * N + j] = f1 * hessian[i * N + j] + f2 * gradient[i] * gradient[j];
+    if constexpr (Order == 2) {
+      for (int i = 0; i < N; ++i)
+        for (int j = 0; j < N; ++j)
+          r.hessian[i * N + j] = f1 * hessian[i * N + j] + f2 * gradient[i] * gradient[j];
+    } else {
+      (void)f2;
+    }
     return r;
   }
 
   Jet& operator+=(const Jet& b) {
     value += b.value;
     for (int i = 0; i < N; ++i) gradient[i] += b.gradient[i];
-    for (int i = 0; i < N * N; ++i) hessian[i] += b.hessian[i];
+    for (int i = 0; i < hessian_size; ++i) hessian[i] += b.hessian[i];
     return *this;
   }
   Jet& operator-=(const Jet& b) {
     value -= b.value;
     for (int i = 0; i < N; ++i) gradient[i] -= b.gradient[i];
-    for (int i = 0; i < N * N; ++i) hessian[i] -= b.hessian[i];
+    for (int i = 0; i < hessian_size; ++i) hessian[i] -= b.hessian[i];
     return *this;
   }
   // (ab)'' = a b'' + b a'' + a' b'ᵀ + b' a'ᵀ
   Jet& operator*=(const Jet& b) {
     Jet r(value * b.value);
     for (int i = 0; i < N; ++i) r.gradient[i] = value * b.gradient[i] + b.value * gradient[i];
-    for (int i = 0; i < N; ++i)
-      for (int j = 0; j < N; ++j)
-        r.hessian[i * N + j] = value * b.hessian[i * N + j] + b.value * hessian[i * N + j] +
-                               gradient[i] * b.gradient[j] + b.gradient[i] * gradient[j];
+    if constexpr (Order == 2)
+      for (int i = 0; i < N; ++i)
+        for (int j = 0; j < N; ++j)
+          r.hessian[i * N + j] = value * b.hessian[i * N + j] + b.value * hessian[i * N + j] +
+                                 gradient[i] * b.gradient[j] + b.gradient[i] * gradient[j];
     return *this = r;
   }
   // a / b = a · (1/b), with (1/u)' = −1/u², (1/u)'' = 2/u³.
@@ -97,25 +108,25 @@ struct Jet {
 
 template <class T>
 struct is_jet : std::false_type {};
-template <class T, int N>
-struct is_jet<Jet<T, N>> : std::true_type {};
+template <class T, int N, int Order>
+struct is_jet<Jet<T, N, Order>> : std::true_type {};
 
 // Binary operators between jets, and between a jet and anything that
 // converts to its scalar (T, int).
 #define VIVV_JET_BINARY(op)                                                       \
-  template <class T, int N>                                                       \
-  Jet<T, N> operator op(Jet<T, N> a, const Jet<T, N>& b) {                        \
+  template <class T, int N, int O>                                                \
+  Jet<T, N, O> operator op(Jet<T, N, O> a, const Jet<T, N, O>& b) {               \
     return a op## = b;                                                            \
   }                                                                               \
-  template <class T, int N, class U,                                              \
+  template <class T, int N, int O, class U,                                       \
             std::enable_if_t<std::is_convertible_v<U, T> && !is_jet<U>::value, int> = 0> \
-  Jet<T, N> operator op(Jet<T, N> a, const U& b) {                                \
-    return a op## = Jet<T, N>(T(b));                                              \
+  Jet<T, N, O> operator op(Jet<T, N, O> a, const U& b) {                          \
+    return a op## = Jet<T, N, O>(T(b));                                           \
   }                                                                               \
-  template <class T, int N, class U,                                              \
+  template <class T, int N, int O, class U,                                       \
             std::enable_if_t<std::is_convertible_v<U, T> && !is_jet<U>::value, int> = 0> \
-  Jet<T, N> operator op(const U& a, const Jet<T, N>& b) {                         \
-    Jet<T, N> r{T(a)};                                                            \
+  Jet<T, N, O> operator op(const U& a, const Jet<T, N, O>& b) {                   \
+    Jet<T, N, O> r{T(a)};                                                         \
     return r op## = b;                                                            \
   }
 VIVV_JET_BINARY(+)
@@ -125,39 +136,39 @@ VIVV_JET_BINARY(/)
 #undef VIVV_JET_BINARY
 
 // Elementary functions, each by its first and second derivative.
-template <class T, int N>
-Jet<T, N> sin(const Jet<T, N>& u) {
+template <class T, int N, int O>
+Jet<T, N, O> sin(const Jet<T, N, O>& u) {
   using std::cos, std::sin;
   T s = sin(u.value), c = cos(u.value);
   return u.chain(s, c, -s);
 }
-template <class T, int N>
-Jet<T, N> cos(const Jet<T, N>& u) {
+template <class T, int N, int O>
+Jet<T, N, O> cos(const Jet<T, N, O>& u) {
   using std::cos, std::sin;
   T s = sin(u.value), c = cos(u.value);
   return u.chain(c, -s, -c);
 }
-template <class T, int N>
-Jet<T, N> exp(const Jet<T, N>& u) {
+template <class T, int N, int O>
+Jet<T, N, O> exp(const Jet<T, N, O>& u) {
   using std::exp;
   T e = exp(u.value);
   return u.chain(e, e, e);
 }
-template <class T, int N>
-Jet<T, N> log(const Jet<T, N>& u) {
+template <class T, int N, int O>
+Jet<T, N, O> log(const Jet<T, N, O>& u) {
   using std::log;
   T inverse = 1 / u.value;
   return u.chain(log(u.value), inverse, -inverse * inverse);
 }
-template <class T, int N>
-Jet<T, N> sqrt(const Jet<T, N>& u) {
+template <class T, int N, int O>
+Jet<T, N, O> sqrt(const Jet<T, N, O>& u) {
   using std::sqrt;
   T s = sqrt(u.value);
   return u.chain(s, 1 / (2 * s), -1 / (4 * s * s * s));
 }
 // u^p for a constant exponent p.
-template <class T, int N>
-Jet<T, N> pow(const Jet<T, N>& u, const T& p) {
+template <class T, int N, int O>
+Jet<T, N, O> pow(const Jet<T, N, O>& u, const T& p) {
   using std::pow;
   T f0 = pow(u.value, p);
   T f1 = p * pow(u.value, p - 1);

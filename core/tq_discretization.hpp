@@ -258,7 +258,7 @@ TQLegendre<S, System::dimension> tq_legendre(const System& system,
                                              const TangentPoint<S, System::dimension>& v,
                                              const typename System::Scalar& h) {
   constexpr int n = System::dimension;
-  using J = Jet<S, 2 * n>;
+  using J = Jet<S, 2 * n, 1>;  // first derivatives only
   TangentPoint<J, n> jet_v;
   for (int i = 0; i < n; ++i) {
     jet_v.q[i] = J::variable(v.q[i], i);

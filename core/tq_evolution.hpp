@@ -58,7 +58,7 @@ TQStep<typename System::Scalar, System::dimension> tq_step(
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
   constexpr int m = 2 * n;
-  using J = Jet<T, m>;
+  using J = Jet<T, m, 1>;  // the Jacobian needs first derivatives only
   TangentPoint<T, n> point;
   for (int i = 0; i < n; ++i) point.q[i] = v.q[i], point.w[i] = v.w[i];
   auto at_v = tq_legendre(system, past, point, h);
@@ -153,7 +153,7 @@ TQCriticalPair<typename System::Scalar, System::dimension> tq_critical_pair(
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
   constexpr int m = 4 * n;
-  using J = Jet<T, m>;
+  using J = Jet<T, m, 1>;  // the Jacobian needs first derivatives only
   using std::max;
   if (past.theta != future.theta)
     throw std::invalid_argument("tq_critical_pair: the past and future discretizations need the same θ");

@@ -59,11 +59,12 @@ struct PastFutureSymmetryClaim {
     claim.evidence["contact_order_r"] = r;
     claim.evidence["mismatched_first_pair"] = context.tq_past.has_value();
     claim.evidence["per_step"] = rows;
-    claim.series.push_back(make_series("max(|Δw|, |Δw̃|)", context.steps(), difference, context.floor(),
-                                       predicted, expected.has_value(), context.order_tolerance));
+    // The symmetric residual is the claim's main measurement; the graph difference beside it.
     claim.series.push_back(make_series("|Δw − Δw̃| (symmetric residual)", context.steps(), asymmetry,
                                        context.floor(), predicted + 1, expected.has_value(),
                                        context.order_tolerance));
+    claim.series.push_back(make_series("max(|Δw|, |Δw̃|)", context.steps(), difference, context.floor(),
+                                       predicted, expected.has_value(), context.order_tolerance));
     conclude(claim);
     return claim;
   }

@@ -31,6 +31,22 @@ struct TwinMeasurement {
   T h, gap, trajectory_tolerance, shift, shift_error, shift_tolerance;
 };
 
+// max_j |(p_with − p_plain)_j − a_j h^s| over both transforms, and the size max_j |p_plain| + |a_j h^s|
+// (at least 1) that its rounding is measured against.
+template <class T, class Transform>
+std::pair<T, T> legendre_shift_error(const Transform& with, const Transform& plain, const Transform& with_other,
+                                     const Transform& plain_other, const TwinTerm<T>& twin, const T& h) {
+  using std::abs, std::max, std::pow;
+  T error = 0, scale = 1;
+  for (std::size_t j = 0; j < twin.a.size(); ++j) {
+    T expected_shift = twin.a[j] * pow(h, twin.power);
+    error = max(error, abs(with[j] - plain[j] - expected_shift));
+    error = max(error, abs(with_other[j] - plain_other[j] - expected_shift));
+    scale = max(scale, abs(plain[j]) + abs(expected_shift));
+  }
+  return {error, scale};
+}
+
 struct TwinTermInvarianceClaim {
   static constexpr const char* id = "twin-term-invariance";
   static constexpr const char* source = "paper §2.2–2.3";
@@ -98,13 +114,8 @@ struct TwinTermInvarianceClaim {
       const auto& q = without.trajectories[i].q;
       auto shifted = discrete_legendre(context.system, context.scheme.future, q[N - 1], q[N], h);
       auto plain_legendre = discrete_legendre(context.system, plain.future, q[N - 1], q[N], h);
-      T shift_error = 0, p_scale = 1;
-      for (int j = 0; j < n; ++j) {
-        T expected_shift = twin.a[j] * pow(h, twin.power);
-        shift_error = max(shift_error, abs(shifted.p_end[j] - plain_legendre.p_end[j] - expected_shift));
-        shift_error = max(shift_error, abs(shifted.p_begin[j] - plain_legendre.p_begin[j] - expected_shift));
-        p_scale = max(p_scale, abs(plain_legendre.p_begin[j]) + abs(expected_shift));
-      }
+      auto [shift_error, p_scale] = legendre_shift_error<T>(shifted.p_begin, plain_legendre.p_begin, shifted.p_end,
+                                                            plain_legendre.p_end, twin, h);
       // Rounding in N Newton solves, each converged to 64 ulps: allow 1024·N ulps.
       measured.push_back({N, h, gap, 1024 * T(N) * epsilon<T>() * scale,
                           T(twin.a[0] * pow(h, twin.power)), shift_error, 64 * epsilon<T>() * p_scale});
@@ -142,13 +153,8 @@ struct TwinTermInvarianceClaim {
       for (int j = 0; j < n; ++j) v.q[j] = b[N].q[j], v.w[j] = b[N].w[j];
       auto shifted = tq_legendre(context.system, with, v, h);
       auto plain_legendre = tq_legendre(context.system, plain, v, h);
-      T shift_error = 0, p_scale = 1;
-      for (int j = 0; j < n; ++j) {
-        T expected_shift = twin.a[j] * pow(h, twin.power);
-        shift_error = max(shift_error, abs(shifted.p_plus[j] - plain_legendre.p_plus[j] - expected_shift));
-        shift_error = max(shift_error, abs(shifted.p_minus[j] - plain_legendre.p_minus[j] - expected_shift));
-        p_scale = max(p_scale, abs(plain_legendre.p_minus[j]) + abs(expected_shift));
-      }
+      auto [shift_error, p_scale] = legendre_shift_error<T>(shifted.p_minus, plain_legendre.p_minus, shifted.p_plus,
+                                                            plain_legendre.p_plus, twin, h);
       // The same rounding allowances as for Q×Q.
       measured.push_back({N, h, gap, 1024 * T(N) * epsilon<T>() * scale,
                           T(twin.a[0] * pow(h, twin.power)), shift_error, 64 * epsilon<T>() * p_scale});
