@@ -39,6 +39,12 @@ std::array<S, 2 * System::dimension> tq_residual(
   return residual;
 }
 
+// Whether L_h is pulled back from a Q×Q discrete Lagrangian (it then divides d+ − d− by h).
+template <class T>
+bool pulls_back(const TQDiscretization<T>& d) {
+  return d.lagrangian == TQLagrangianKind::pullback;
+}
+
 template <class T, int n>
 struct TQStep {
   State<T, n> next;
@@ -66,9 +72,12 @@ TQStep<typename System::Scalar, System::dimension> tq_step(
   for (int i = 0; i < n; ++i) x[i] = v.w[i], x[n + i] = v.w[i];
   // The residual rounds at ε·|q|/h (its first block divides a difference of
   // configurations by h): z cannot be resolved below that, and q̃ = q + h z
-  // is then still at working precision.
+  // is then still at working precision. A pulled-back L_h evaluates L_d at
+  // (d−, d+) and so divides d+ − d− by h too: its P± and hence w̃ round there as well.
   Vector<T, m> rounding_scale = Vector<T, m>::Ones();
-  rounding_scale.head(n).setConstant(std::max<T>(T(1), max_norm<T, n>(v.q) / h));
+  const T point_scale = std::max<T>(T(1), max_norm<T, n>(v.q) / h);
+  rounding_scale.head(n).setConstant(point_scale);
+  if (pulls_back(past) || pulls_back(future)) rounding_scale.tail(n).setConstant(point_scale);
   TQStep<T, n> step;
   step.report = newton_solve<T, m>(
       x,
@@ -165,10 +174,15 @@ TQCriticalPair<typename System::Scalar, System::dimension> tq_critical_pair(
     x[2 * n + i] = (1 + past.theta) * z[i] / 2;
     x[3 * n + i] = z[i] / 2;
   }
-  // As in tq_step: the configuration blocks divide differences of points by h.
+  // As in tq_step: the configuration blocks divide differences of points by h,
+  // and so do the velocity blocks of a pulled-back L_h.
   Vector<T, m> rounding_scale = Vector<T, m>::Ones();
   const T point_scale = max(T(1), T(max(max_norm<T, n>(q_minus), max_norm<T, n>(q_plus)) / h));
-  for (int i = 0; i < n; ++i) rounding_scale[i] = rounding_scale[2 * n + i] = point_scale;
+  const bool velocities_too = pulls_back(past) || pulls_back(future);
+  for (int i = 0; i < n; ++i) {
+    rounding_scale[i] = rounding_scale[2 * n + i] = point_scale;
+    if (velocities_too) rounding_scale[n + i] = rounding_scale[3 * n + i] = point_scale;
+  }
   auto point_of = [&](const auto& at, int offset) {
     using S = std::decay_t<decltype(at[0])>;
     TangentPoint<S, n> point;

@@ -205,6 +205,7 @@ struct ExistenceUniquenessClaim {
     claim.series.push_back(make_series("|F_h(v) − v|", context.steps(), displacement, context.floor(),
                                        1.0, false, context.order_tolerance));
     // h_max against the speed |w|.
+    using std::ldexp;
     nlohmann::json map = nlohmann::json::array();
     bool all_positive = true;
     State<T, n> v = context.initial;
@@ -213,7 +214,9 @@ struct ExistenceUniquenessClaim {
       context.report("existence-uniqueness: h_max at |w| = " + to_decimal<T>(max_norm<T, n>(v.w)));
       T largest = h_max(context, v);
       all_positive = all_positive && largest > 0;
-      map.push_back({{"speed", to_decimal<T>(max_norm<T, n>(v.w))}, {"h_max", to_decimal<T>(largest)}});
+      map.push_back({{"speed", to_decimal<T>(max_norm<T, n>(v.w))},
+                     {"h_max", to_decimal<T>(largest)},
+                     {"at_search_ceiling", largest == ldexp(context.final_time, doublings)}});
       v.w *= 2;
     }
     claim.evidence["h_max_by_speed"] = map;
