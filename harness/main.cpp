@@ -244,6 +244,9 @@ int command_list() {
   }
   std::cout << "discretizations (Q×Q rules):\n";
   for (const auto& rule : rule_names()) std::cout << "  " << rule << "\n";
+  std::cout << "discretizations of TQ (\"formalism\": \"tq\", \"theta\": a fraction in [0, 1]):\n"
+               "  psi: linear | taylor (with \"r\": 1..8) | exact\n"
+               "  lagrangian: quadrature (with \"nodes\") | pullback (with a Q×Q \"qxq\") | exact (psi exact only)\n";
   std::cout << "claims:\n";
   for (const auto& claim : registered_claims())
     std::cout << "  " << claim.id << " [" << claim.source << "]: " << claim.prediction << "\n";
