@@ -147,6 +147,10 @@ class ExactCurve {
     }
     double log_rho = std::min((log_state - log_previous) / (p - 1), (log_state - log_last) / p);
     double length = std::exp(log_rho - 2 - 0.7 / (p - 1));
+    if (std::isnan(length))
+      throw std::runtime_error(
+          "ExactCurve: non-finite Taylor coefficients (the solution left the Lagrangian's domain or "
+          "its mass matrix became singular)");
     if (!std::isfinite(length))  // a polynomial solution: any length is exact
       length = 1;
     if (!(length > 0))
