@@ -26,6 +26,7 @@
 #include "core/scalar.hpp"
 #include "core/tape.hpp"
 #include "core/taylor_curve.hpp"
+#include "core/taylor_expansion.hpp"  // taylor_order_for, jorba_zou_step
 
 namespace vivv {
 
@@ -51,15 +52,6 @@ const leaf_scalar_t<S>& leaf_value(const S& x) {
   }
 }
 
-// p = ⌈−ln(tol)/2 + 1⌉, at least 2: the Jorba–Zou order for step tolerance `tolerance`.
-template <class T>
-int exact_curve_order(const T& tolerance) {
-  using std::log;
-  if (!(tolerance > 0 && tolerance < 1))
-    throw std::invalid_argument("ExactCurve: tolerance must be in (0, 1), got " + to_decimal<T>(tolerance));
-  return std::max(2, static_cast<int>(std::ceil(-static_cast<double>(log(tolerance)) / 2 + 1)));
-}
-
 template <class S, class T>
 class ExactCurve {
  public:
@@ -67,7 +59,7 @@ class ExactCurve {
   // pieces at step tolerance `tolerance`.
   ExactCurve(const Tape<T>& tape, const std::vector<S>& x0, const std::vector<S>& v0,
              const T& t_begin, const T& t_end, const T& tolerance)
-      : order_(exact_curve_order(tolerance)), dimension_(static_cast<int>(x0.size())) {
+      : order_(taylor_order_for(tolerance)), dimension_(static_cast<int>(x0.size())) {
     if (!(t_begin <= 0 && 0 <= t_end))
       throw std::invalid_argument("ExactCurve: the interval must contain 0");
     Piece first = expand(tape, x0, v0, T(0));
@@ -76,9 +68,6 @@ class ExactCurve {
     extend(tape, forward_, t_end, 1);
     extend(tape, backward_, t_begin, -1);
   }
-
-  // p, the degree of the velocity polynomials (positions have degree p + 1).
-  int order() const { return order_; }
 
   // x(t) and x'(t) for a constant t in [t_begin, t_end].
   void at(const T& t, std::vector<S>& x, std::vector<S>& v) const { evaluate(piece_at(t), t, x, v); }
@@ -121,36 +110,31 @@ class ExactCurve {
     }
   }
 
-  // ln |x| in double, −∞ for 0.
-  static double log_abs(const T& x) {
-    using std::abs;
-    using std::log;
-    if (x == 0) return -std::numeric_limits<double>::infinity();
-    return static_cast<double>(log(abs(x)));
-  }
-
   // The piece starting at `start` through (x0, v0): its coefficients and its Jorba–Zou length.
   Piece expand(const Tape<T>& tape, const std::vector<S>& x0, const std::vector<S>& v0,
                const T& start) const {
     Piece piece{start, T(0), solution_taylor_coefficients<S, T>(tape, x0, v0, order_ + 1)};
+    using taylor_detail::log_abs;
     const int p = order_;
     double log_state = 0, log_previous = -std::numeric_limits<double>::infinity(),
            log_last = log_previous;
     for (const std::vector<S>& c : piece.coefficients) {
       // y_k = (x_k, (k+1) x_{k+1}).
       auto log_y = [&](int k) {
-        return std::max(log_abs(leaf_value(c[k])), log_abs(T(leaf_value(c[k + 1]) * (k + 1))));
+        const double position = log_abs(leaf_value(c[k]));
+        const double velocity = log_abs(T(leaf_value(c[k + 1]) * (k + 1)));
+        constexpr double infinity = std::numeric_limits<double>::infinity();
+        if (!(position < infinity) || !(velocity < infinity))  // NaN or ∞ (ln 0 = −∞ is fine)
+          throw std::runtime_error(
+              "ExactCurve: non-finite Taylor coefficients (the solution left the Lagrangian's domain "
+              "or its mass matrix became singular)");
+        return std::max(position, velocity);
       };
       log_state = std::max(log_state, log_y(0));
       log_previous = std::max(log_previous, log_y(p - 1));
       log_last = std::max(log_last, log_y(p));
     }
-    double log_rho = std::min((log_state - log_previous) / (p - 1), (log_state - log_last) / p);
-    double length = std::exp(log_rho - 2 - 0.7 / (p - 1));
-    if (std::isnan(length))
-      throw std::runtime_error(
-          "ExactCurve: non-finite Taylor coefficients (the solution left the Lagrangian's domain or "
-          "its mass matrix became singular)");
+    double length = jorba_zou_step(log_state, log_previous, log_last, p);
     if (!std::isfinite(length))  // a polynomial solution: any length is exact
       length = 1;
     if (!(length > 0))

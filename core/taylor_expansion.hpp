@@ -26,6 +26,8 @@
 #include <gmp.h>
 #include <mpfr.h>
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -197,7 +199,41 @@ void set_dot(T& r, const T* a, const T* b, int from, int to, int total, T& scrat
   }
 }
 
+// ln |x| to double accuracy, for any exponent range (MPFR: from the exponent and leading bits);
+// −∞ for 0.
+template <class T>
+double log_abs(const T& x) {
+  using std::abs;
+  using std::log;
+  if constexpr (is_mpfr_v<T>) {
+    long exponent = 0;
+    const double mantissa = mpfr_get_d_2exp(&exponent, x.backend().data(), MPFR_RNDN);
+    return std::log(std::fabs(mantissa)) + static_cast<double>(exponent) * 0.69314718055994531;
+  } else {
+    return static_cast<double>(log(abs(x)));
+  }
+}
+
 }  // namespace taylor_detail
+
+// Jorba & Zou (2005), as heyoka does, for a step tolerance tol:
+// p = ⌈−ln(tol)/2 + 1⌉, at least 2 (an integer heuristic: double suffices).
+template <class T>
+int taylor_order_for(const T& tolerance) {
+  using std::log;
+  if (!(tolerance > 0 && tolerance < 1))
+    throw std::invalid_argument("taylor_order_for: tolerance must be in (0, 1), got " +
+                                to_decimal<T>(tolerance));
+  const double minus_log = -static_cast<double>(log(tolerance));
+  return std::max(2, static_cast<int>(std::ceil(minus_log / 2 + 1)));
+}
+
+// The step h = ρ e^{−2} e^{−0.7/(p−1)}, ρ = min((s/‖y_{p−1}‖)^{1/(p−1)}, (s/‖y_p‖)^{1/p}), from
+// ln s, ln ‖y_{p−1}‖ and ln ‖y_p‖ (−∞ for a vanishing norm); +∞ when both norms vanish.
+inline double jorba_zou_step(double log_scale, double log_previous, double log_last, int p) {
+  const double log_rho = std::min((log_scale - log_previous) / (p - 1), (log_scale - log_last) / p);
+  return std::exp(log_rho - 2 - 0.7 / (p - 1));
+}
 
 template <class T>
 class TaylorExpansion {

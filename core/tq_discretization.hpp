@@ -18,6 +18,7 @@
 #include "core/discrete_lagrangian.hpp"
 #include "core/exact_curve.hpp"
 #include "core/small_linear_algebra.hpp"
+#include "core/state.hpp"
 #include "core/tape.hpp"
 #include "core/taylor_curve.hpp"
 
@@ -56,6 +57,14 @@ template <class S, int n>
 struct TangentPoint {
   Point<S, n> q, w;
 };
+
+// The state v = (q, w) as a point of TQ.
+template <class T, int n>
+TangentPoint<T, n> tangent_point(const State<T, n>& v) {
+  TangentPoint<T, n> point;
+  for (int i = 0; i < n; ++i) point.q[i] = v.q[i], point.w[i] = v.w[i];
+  return point;
+}
 
 // The curve segment t ↦ psi(h, t, v) through v, for t in [α−, α+]: linear and
 // taylor-r as the polynomial psi = Σ_k c_k t^k with (c_0, c_1) = (q, w) (linear)
@@ -136,6 +145,7 @@ class CurveSegment {
   // Σ_k p_k t^k, component by component.
   template <class U>
   static Point<S, n> horner(const std::vector<Point<S, n>>& p, const U& t) {
+    if (p.empty()) throw std::logic_error("curve_segment: psi exact has no single polynomial");
     Point<S, n> sum = p.back();
     for (int k = static_cast<int>(p.size()) - 2; k >= 0; --k) {
       for (int i = 0; i < n; ++i) {

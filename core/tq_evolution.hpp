@@ -39,6 +39,15 @@ std::array<S, 2 * System::dimension> tq_residual(
   return residual;
 }
 
+// F and J = dF/dx for Newton from F evaluated on the jets x_i = variable(i).
+template <class T, int m, class J>
+void split_jets(const std::array<J, m>& f, Vector<T, m>& residual, Matrix<T, m, m>& jacobian) {
+  for (int i = 0; i < m; ++i) {
+    residual[i] = f[i].value;
+    for (int j = 0; j < m; ++j) jacobian(i, j) = f[i].gradient[j];
+  }
+}
+
 // Whether L_h is pulled back from a Q×Q discrete Lagrangian (it then divides d+ − d− by h).
 template <class T>
 bool pulls_back(const TQDiscretization<T>& d) {
@@ -65,9 +74,7 @@ TQStep<typename System::Scalar, System::dimension> tq_step(
   constexpr int n = System::dimension;
   constexpr int m = 2 * n;
   using J = Jet<T, m, 1>;  // the Jacobian needs first derivatives only
-  TangentPoint<T, n> point;
-  for (int i = 0; i < n; ++i) point.q[i] = v.q[i], point.w[i] = v.w[i];
-  auto at_v = tq_legendre(system, past, point, h);
+  auto at_v = tq_legendre(system, past, tangent_point(v), h);
   Vector<T, m> x;
   for (int i = 0; i < n; ++i) x[i] = v.w[i], x[n + i] = v.w[i];
   // The residual rounds at ε·|q|/h (its first block divides a difference of
@@ -76,19 +83,18 @@ TQStep<typename System::Scalar, System::dimension> tq_step(
   // (d−, d+) and so divides d+ − d− by h too: its P± and hence w̃ round there as well.
   Vector<T, m> rounding_scale = Vector<T, m>::Ones();
   const T point_scale = std::max<T>(T(1), max_norm<T, n>(v.q) / h);
-  rounding_scale.head(n).setConstant(point_scale);
-  if (pulls_back(past) || pulls_back(future)) rounding_scale.tail(n).setConstant(point_scale);
+  const bool velocities_too = pulls_back(past) || pulls_back(future);
+  for (int i = 0; i < n; ++i) {
+    rounding_scale[i] = point_scale;
+    if (velocities_too) rounding_scale[n + i] = point_scale;
+  }
   TQStep<T, n> step;
   step.report = newton_solve<T, m>(
       x,
       [&](const Vector<T, m>& at, Vector<T, m>& residual, Matrix<T, m, m>& jacobian) {
         std::array<J, m> jet_x;
         for (int i = 0; i < m; ++i) jet_x[i] = J::variable(at[i], i);
-        auto r = tq_residual(system, future, v, at_v, jet_x, h);
-        for (int i = 0; i < m; ++i) {
-          residual[i] = r[i].value;
-          for (int j = 0; j < m; ++j) jacobian(i, j) = r[i].gradient[j];
-        }
+        split_jets<T, m>(tq_residual(system, future, v, at_v, jet_x, h), residual, jacobian);
       },
       options, rounding_scale);
   for (int i = 0; i < n; ++i) {
@@ -207,10 +213,7 @@ TQCriticalPair<typename System::Scalar, System::dimension> tq_critical_pair(
           r[2 * n + i] = (at_v.d_plus[i] - at_next.d_minus[i]) / h;
           r[3 * n + i] = at_v.p_plus[i] - at_next.p_minus[i];
         }
-        for (int i = 0; i < m; ++i) {
-          residual[i] = r[i].value;
-          for (int j = 0; j < m; ++j) jacobian(i, j) = r[i].gradient[j];
-        }
+        split_jets<T, m>(r, residual, jacobian);
       },
       options, rounding_scale);
   for (int i = 0; i < n; ++i) {

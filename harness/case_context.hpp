@@ -70,7 +70,7 @@ TQDiscretization<T> make_tq_discretization(const DiscretizationSpec& spec, const
   d.theta = from_fraction<T>(tq.theta);
   if (tq.lagrangian == "quadrature" || tq.lagrangian == "exact") {
     d.lagrangian = tq.lagrangian == "exact" ? TQLagrangianKind::exact : TQLagrangianKind::quadrature;
-    auto rule = gauss_legendre<T>(tq.lagrangian == "exact" ? exact_curve_order(curve_tolerance) / 2 + 4
+    auto rule = gauss_legendre<T>(tq.lagrangian == "exact" ? taylor_order_for(curve_tolerance) / 2 + 4
                                                            : tq.nodes);
     d.nodes = rule.nodes;
     d.weights = rule.weights;

@@ -34,17 +34,6 @@
 
 namespace vivv {
 
-// p = ⌈−ln(tol)/2 + 1⌉, at least 2 (an integer heuristic: double suffices).
-template <class T>
-int taylor_order_for(const T& tolerance) {
-  using std::log;
-  if (!(tolerance > 0 && tolerance < 1))
-    throw std::invalid_argument("taylor_order_for: tolerance must be in (0, 1), got " +
-                                to_decimal<T>(tolerance));
-  const double minus_log = -static_cast<double>(log(tolerance));
-  return std::max(2, static_cast<int>(std::ceil(minus_log / 2 + 1)));
-}
-
 // What a Taylor integrator did (cumulative).
 struct TaylorReport {
   long steps = 0;                // steps taken (each one expansion of order `order`)
@@ -123,20 +112,6 @@ bool abs_less(const T& a, const T& b) {
   }
 }
 
-// ln |x| to double accuracy, for any exponent range (MPFR: from the exponent and leading bits).
-template <class T>
-double log_abs(const T& x) {
-  using std::abs;
-  using std::log;
-  if constexpr (is_mpfr_v<T>) {
-    long exponent = 0;
-    const double mantissa = mpfr_get_d_2exp(&exponent, x.backend().data(), MPFR_RNDN);
-    return std::log(std::fabs(mantissa)) + static_cast<double>(exponent) * 0.69314718055994531;
-  } else {
-    return static_cast<double>(log(abs(x)));
-  }
-}
-
 }  // namespace taylor_flow_detail
 
 // ρ is a step-size heuristic, so it is computed from ln-norms in double: its
@@ -170,14 +145,9 @@ T TaylorIntegrator<T>::jorba_zou_step() const {
     }
   }
   // ln s with s = max(1, ‖y_0‖): absolute control below norm 1, relative above.
-  const double log_scale = abs_less(*state_norm, T(1)) ? 0.0 : taylor_flow_detail::log_abs(*state_norm);
-  double log_rho = std::numeric_limits<double>::infinity();
-  if (*norm_previous != 0)
-    log_rho = std::min(log_rho, (log_scale - taylor_flow_detail::log_abs(*norm_previous)) / (p - 1));
-  if (*norm_last != 0)
-    log_rho = std::min(log_rho, (log_scale - taylor_flow_detail::log_abs(*norm_last)) / p);
-  // h = ρ e^{−2} e^{−0.7/(p−1)}.
-  const double step = std::exp(log_rho - 2 - 0.7 / (p - 1));
+  using taylor_detail::log_abs;
+  const double log_scale = abs_less(*state_norm, T(1)) ? 0.0 : log_abs(*state_norm);
+  const double step = vivv::jorba_zou_step(log_scale, log_abs(*norm_previous), log_abs(*norm_last), p);
   if (!(step > 0))
     throw std::runtime_error("TaylorIntegrator: step size underflow (Taylor coefficients too large)");
   return T(step);

@@ -32,10 +32,8 @@ struct ExactDiscretizationClaim {
     nlohmann::json rows = nlohmann::json::array();
     for (const T& h : context.steps()) {
       context.report("exact-discretization at h = " + to_decimal<T>(h));
-      auto step = tq_step(context.system, *context.tq, context.initial, h);
-      require_converged(step.report, "TQ step with h = " + to_decimal<T>(h));
       State<T, n> exact = context.exact(h);
-      T gap = state_distance(step.next, exact);
+      T gap = state_distance(tq_map(context, *context.tq, h), exact);
       T scale = max(T(1), max(max_norm<T, n>(exact.q), max_norm<T, n>(exact.w)));
       T tolerance = tolerance_factor * context.reference.tolerance() * scale;
       bool holds = gap <= tolerance;
@@ -44,7 +42,6 @@ struct ExactDiscretizationClaim {
       rows.push_back({{"h", to_decimal<T>(h)},
                       {"difference", to_decimal<T>(gap)},
                       {"tolerance", to_decimal<T>(tolerance)},
-                      {"newton_iterations", step.report.iterations},
                       {"holds", holds}});
     }
     claim.evidence["per_step"] = rows;

@@ -100,11 +100,6 @@ struct QxQTQEquivalenceClaim {
       for (int i = 0; i < n; ++i) v[i] = p[i];
       return v;
     };
-    auto tangent = [](const State<T, n>& s) {
-      TangentPoint<T, n> v;
-      for (int i = 0; i < n; ++i) v.q[i] = s.q[i], v.w[i] = s.w[i];
-      return v;
-    };
     std::vector<T> gaps;
     bool all_hold = true;
     nlohmann::json rows = nlohmann::json::array();
@@ -112,13 +107,13 @@ struct QxQTQEquivalenceClaim {
       context.report("qxq-tq-equivalence at h = " + to_decimal<T>(h));
       auto states = tq_trajectory(context.system, d, context.initial, h, compared_steps);
       // The DEL from Psi(v_0) = (d−(v_0), d+(v_0)).
-      auto v0 = tangent(states[0]);
+      auto v0 = tangent_point(states[0]);
       auto del = del_trajectory(context.system, matched_scheme(d.qxq),
                                 as_vector(d_minus<T, n>(d, v0, h)), as_vector(d_plus<T, n>(d, v0, h)),
                                 h, compared_steps + 1);
       T gap = 0, scale = 1;
       for (int k = 0; k <= compared_steps; ++k) {
-        auto v = tangent(states[k]);
+        auto v = tangent_point(states[k]);
         gap = max(gap, max_norm<T, n>(as_vector(d_minus<T, n>(d, v, h)) - del.q[k]));
         gap = max(gap, max_norm<T, n>(as_vector(d_plus<T, n>(d, v, h)) - del.q[k + 1]));
         scale = max(scale, max_norm<T, n>(del.q[k]));

@@ -149,8 +149,7 @@ struct TwinTermInvarianceClaim {
         gap = max(gap, state_distance(a[k], b[k]));
         scale = max(scale, max(max_norm<T, n>(a[k].q), max_norm<T, n>(a[k].w)));
       }
-      TangentPoint<T, n> v;
-      for (int j = 0; j < n; ++j) v.q[j] = b[N].q[j], v.w[j] = b[N].w[j];
+      auto v = tangent_point(b[N]);
       auto shifted = tq_legendre(context.system, with, v, h);
       auto plain_legendre = tq_legendre(context.system, plain, v, h);
       auto [shift_error, p_scale] = legendre_shift_error<T>(shifted.p_minus, plain_legendre.p_minus, shifted.p_plus,

@@ -115,7 +115,7 @@ TYPED_TEST(TQEvolutionTest, ExactDiscretizationEvolvesByTheFlow) {
   const T tolerance = testing::reference_tolerance<T>();
   auto exact = this->quadrature(system, CurveFamily::exact, T(1) / 2, 1);
   exact.lagrangian = TQLagrangianKind::exact;
-  auto rule = gauss_legendre<T>(exact_curve_order(exact.curve_tolerance) / 2 + 4);
+  auto rule = gauss_legendre<T>(taylor_order_for(exact.curve_tolerance) / 2 + 4);
   exact.nodes = rule.nodes, exact.weights = rule.weights;
   auto two_nodes = this->quadrature(system, CurveFamily::exact, T(1) / 2, 2);
   State<T, 1> v{Vector<T, 1>(T(11) / 10), Vector<T, 1>(T(1) / 4)};
