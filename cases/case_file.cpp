@@ -237,9 +237,11 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   if (reader.has("start")) spec.start = reader.one_of("start", {"reference", "momentum"});
   if (reader.has("order_tolerance")) {
     spec.order_tolerance = reader.decimal("order_tolerance");
-    if (std::stold(spec.order_tolerance) <= 0 || std::stold(spec.order_tolerance) >= 1)
-      reader.fail("order_tolerance", "expected a tolerance in (0, 1), got \"" +
-                                         spec.order_tolerance + "\"");
+    const long double tolerance = std::stold(spec.order_tolerance);
+    if (!(tolerance > 0) || tolerance > std::stold(maximum_order_tolerance))
+      reader.fail("order_tolerance", std::string("expected a tolerance in (0, ") + maximum_order_tolerance +
+                                         "], got \"" + spec.order_tolerance +
+                                         "\": a wider one would accept an order-r prediction at order r − 1");
   }
   if (reader.has("labels")) spec.labels = reader.strings("labels");
 
@@ -295,8 +297,24 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   if (reader.has("expect")) {
     Reader expect = reader.object("expect");
     for (const auto& id : spec.claims)
-      if (expect.has(id)) spec.expect[id] = expect.integer(id, 0, 64);
+      if (expect.has(id)) spec.expect[id] = expect.integer(id, 1, 64);  // order <= 0 predicts no convergence
     expect.finish();  // an expectation for a claim the case does not check is an error
+  }
+  if (reader.has("xfail")) {
+    Reader xfail = reader.object("xfail");
+    for (const auto& id : spec.claims) {
+      if (!xfail.has(id)) continue;
+      std::string reason = xfail.string(id);
+      if (reason.find_first_not_of(" \t\n") == std::string::npos)
+        xfail.fail(id, "expected the reason the claim is known to fail, got an empty string");
+      spec.xfail[id] = reason;
+    }
+    xfail.finish();  // an expected failure of a claim the case does not check is an error
+  }
+  if (reader.has("refine")) {
+    const auto& refine = reader.get("refine");
+    if (!refine.is_boolean()) reader.fail("refine", "expected true or false, got " + refine.dump());
+    spec.refine = refine.get<bool>();
   }
   reader.finish();
   return spec;

@@ -6,6 +6,7 @@
 // (and the Jacobians the DEL solver needs) come from automatic differentiation.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -47,6 +48,14 @@ struct TwinTerm {
   int power = 1;
 };
 
+// Whether any a_j of the twin term is nonzero (a = 0 is no twin term at all).
+template <class T>
+bool has_nonzero_coefficient(const TwinTerm<T>& twin) {
+  for (const T& a : twin.a)
+    if (a != 0) return true;
+  return false;
+}
+
 // One Q×Q discrete Lagrangian: a rule, its parameter (α or β) and an optional twin term.
 template <class T>
 struct QxQDiscretization {
@@ -54,8 +63,8 @@ struct QxQDiscretization {
   T parameter = T(1) / 2;  // α for `alpha`, β for `weighted`
   std::optional<TwinTerm<T>> twin;
 
-  // Nominal order r of L_d: 2 for the symmetric rules, 1 otherwise (MW Def. 2.3.1).
-  int nominal_order() const {
+  // Order of the rule alone: 2 for the symmetric rules, 1 otherwise (MW Def. 2.3.1).
+  int rule_order() const {
     switch (rule) {
       case QxQRule::midpoint:
       case QxQRule::trapezoid:
@@ -67,7 +76,22 @@ struct QxQDiscretization {
         return 1;
     }
   }
+
+  // Order r of L_d: the rule's, lowered to s by a twin term, since a·h^s·(q_e − q_b) is
+  // O(h^{s+1}) along solutions (paper §2.2). The map's order is the rule's: matched twin terms
+  // cancel in the DEL.
+  int nominal_order() const {
+    if (!twin || !has_nonzero_coefficient(*twin)) return rule_order();
+    return std::min(rule_order(), twin->power);
+  }
 };
+
+// The same discretization without its twin term.
+template <class T>
+QxQDiscretization<T> without_twin(QxQDiscretization<T> d) {
+  d.twin.reset();
+  return d;
+}
 
 // L_d(q_b, q_e; h) evaluated in S (T or a jet over T).
 template <LagrangianSystem System, class S>

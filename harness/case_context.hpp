@@ -54,6 +54,9 @@ T from_fraction(const std::string& text) {
   return from_decimal<T>(text.substr(0, slash)) / from_decimal<T>(text.substr(slash + 1));
 }
 
+// The order of an exact part of a discretization: more than any sweep can measure.
+constexpr int unbounded_order = 1000;
+
 // The TQ discretization a case file describes, in scalar T; an exact psi is
 // computed to step tolerance `curve_tolerance`, and the exact action by
 // p/2 + 4 Gauss–Legendre nodes on each of its Taylor pieces (p its order, as
@@ -101,23 +104,67 @@ TQDiscretization<typename System::Scalar> make_tq_discretization(
   return d;
 }
 
-// The order of an exact part of a discretization: more than any sweep can measure.
-constexpr int unbounded_order = 1000;
+// Order of a TQ discretization's curve segment: a linear psi agrees with the
+// solution to O(t²): 1; a taylor-r psi to O(t^{r+1}): r; the exact psi is unbounded.
+template <class T>
+int psi_order(const TQDiscretization<T>& d) {
+  return d.psi == CurveFamily::taylor ? d.r : d.psi == CurveFamily::exact ? unbounded_order : 1;
+}
+
+// Order of L_h against the action integral along its own curve: 2m for m
+// Gauss–Legendre nodes, the Q×Q rule's order (without its twin term) for a
+// pullback, unbounded for the exact action.
+template <class T>
+int action_order(const TQDiscretization<T>& d) {
+  return d.lagrangian == TQLagrangianKind::quadrature ? 2 * static_cast<int>(d.nodes.size())
+         : d.lagrangian == TQLagrangianKind::exact    ? unbounded_order
+                                                      : d.qxq.rule_order();
+}
+
+// The power s of a twin term that changes L_h (a ≠ 0), else unbounded.
+template <class T>
+int twin_order(const std::optional<TwinTerm<T>>& twin) {
+  return twin && has_nonzero_coefficient(*twin) ? twin->power : unbounded_order;
+}
+
+// Order r of the discrete evolution of a TQ discretization: the lower of the
+// curve's and the action's. A twin term does not lower it: it cancels exactly
+// in a matched step (paper §2.2; twin-term-invariance checks it).
+template <class T>
+int evolution_order(const TQDiscretization<T>& d) {
+  return std::min(psi_order(d), action_order(d));
+}
 
 // Order r of a TQ discretization: its order of contact with the exact one
-// (Definition 5.4), the lower of the curve's and the Lagrangian's. A linear
-// psi agrees with the solution to O(t²): r = 1; a taylor-r psi to O(t^{r+1}): r;
-// the exact psi and the exact action are unbounded.
+// (Definition 5.4), the lower of the curve's, the action's and the twin term's.
 template <class T>
 int nominal_order(const TQDiscretization<T>& d) {
-  int psi_order = d.psi == CurveFamily::taylor ? d.r
-                  : d.psi == CurveFamily::exact ? unbounded_order
-                                                : 1;
-  int lagrangian_order = d.lagrangian == TQLagrangianKind::quadrature ? 2 * static_cast<int>(d.nodes.size())
-                         : d.lagrangian == TQLagrangianKind::exact    ? unbounded_order
-                                                                      : d.qxq.nominal_order();
-  if (d.twin) lagrangian_order = std::min(lagrangian_order, d.twin->power);
-  return std::min(psi_order, lagrangian_order);
+  const int pulled_back_twin = d.lagrangian == TQLagrangianKind::pullback ? twin_order(d.qxq.twin) : unbounded_order;
+  return std::min({evolution_order(d), twin_order(d.twin), pulled_back_twin});
+}
+
+// The order of contact of two TQ discretizations with the same α±
+// (psi² = psi¹ + O(t^{r+1}), L_h² = L_h¹ + O(h^{r+1})): not just the lower of
+// their orders against the exact one, but what they share. Two Taylor curves
+// (linear is taylor-1) agree to the lower degree, identical curves everywhere;
+// two actions along one curve agree to the lower of their orders, identical
+// ones (the same node count, the same pulled-back rule) everywhere; a twin term
+// on one side only, or different ones, to its power. At least min(r¹, r²).
+template <class T>
+int contact_order(const TQDiscretization<T>& one, const TQDiscretization<T>& two) {
+  const bool same_curve = one.psi == two.psi && psi_order(one) == psi_order(two);
+  const int psi_contact = same_curve ? unbounded_order : std::min(psi_order(one), psi_order(two));
+  const bool same_action =
+      one.lagrangian == two.lagrangian &&
+      (one.lagrangian == TQLagrangianKind::exact ||
+       (one.lagrangian == TQLagrangianKind::quadrature && one.nodes.size() == two.nodes.size()) ||
+       (one.lagrangian == TQLagrangianKind::pullback && one.qxq.rule == two.qxq.rule &&
+        one.qxq.parameter == two.qxq.parameter && !one.qxq.twin && !two.qxq.twin));
+  const int action_contact = same_action ? unbounded_order : std::min(action_order(one), action_order(two));
+  const bool same_twin = twin_order(one.twin) == twin_order(two.twin) &&
+                         (twin_order(one.twin) == unbounded_order || one.twin->a == two.twin->a);
+  const int twin_contact = same_twin ? unbounded_order : std::min(twin_order(one.twin), twin_order(two.twin));
+  return std::min({psi_contact, action_contact, twin_contact});
 }
 
 // Reference tolerance for a case computed with `digits` decimal digits: ten
@@ -127,6 +174,29 @@ T reference_tolerance_for(int digits) {
   using std::pow;
   return pow(T(10), -(digits - 10));
 }
+
+// The reference's own cross-check against what it promises: the distance
+// estimate_error(v, T) of the reference from an independent check may reach
+// (tolerance + the check's own tolerance)·(1 + |F_T(v)|_max), the max-norm form
+// of |error_i| <= tolerance·(1 + |y_i|) for each of the two.
+template <class Reference, class T, int n>
+ReferenceCheck check_reference(const Reference& reference, const State<T, n>& initial, const T& final_time) {
+  using std::max;
+  const State<T, n> end = reference.advance(initial, final_time);
+  const T allowed = (reference.tolerance() + reference.check_tolerance()) *
+                    (1 + max(max_norm<T, n>(end.q), max_norm<T, n>(end.w)));
+  const T estimate = reference.estimate_error(initial, final_time);
+  return {to_decimal<T>(reference.tolerance()), to_decimal<T>(estimate), to_decimal<T>(allowed),
+          estimate <= allowed};
+}
+
+// An order claim's prediction: `order`, exact when the case declared it, and
+// the theorem's own bound it sharpens.
+struct OrderPrediction {
+  int order = 0;
+  bool exact = false;
+  int theorem = 0;
+};
 
 template <LagrangianSystem System>
 struct CaseContext {
@@ -181,17 +251,30 @@ struct CaseContext {
     for (int N : spec.steps) h.push_back(final_time / N);
     return h;
   }
-  // The order r of the case's discrete Lagrangian(s): the lower of the two sides.
-  int order() const {
+  // The order r of the case's discrete Lagrangian(s), twin terms included: the
+  // lower of the two sides. What lagrangian-order and legendre-order predict from.
+  int lagrangian_order() const {
     if (tq) return nominal_order(*tq);
     return std::min(scheme.future.nominal_order(), scheme.past.nominal_order());
   }
 
-  // Exact order the case declares for `claim`, if any.
-  std::optional<int> expected(const std::string& claim) const {
+  // The order of the case's discrete evolution, what global-order and order
+  // predict from: that of the discretization without its twin terms, which
+  // cancel exactly in a matched DEL (paper §2.2). So midpoint + a·h·(q_e − q_b)
+  // is an order-1 L_d with an order-2 map. On a mismatched pair it is the order
+  // the variational integrator would have; the mismatch is what fails it.
+  int map_order() const {
+    if (tq) return evolution_order(*tq);
+    return std::min(scheme.future.rule_order(), scheme.past.rule_order());
+  }
+
+  // What an order claim predicts for its main series: the theorem's order, a
+  // lower bound, or the exact order the case declares — never below the
+  // theorem's (check_declared_orders in harness/claims.hpp).
+  OrderPrediction predict(const std::string& claim, int theorem) const {
     auto it = spec.expect.find(claim);
-    if (it == spec.expect.end()) return std::nullopt;
-    return it->second;
+    if (it == spec.expect.end()) return {theorem, false, theorem};
+    return {it->second, true, theorem};
   }
 
   // Errors below this are at the floor: a thousand times the larger of the

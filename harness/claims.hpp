@@ -33,6 +33,39 @@ inline std::vector<ClaimInfo> registered_claims() {
   return info;
 }
 
+// The order the theorem behind claim `id` predicts for the case's main series;
+// none for a claim that predicts an identity, exactness or inconsistency.
+template <LagrangianSystem System>
+std::optional<int> theorem_order(const std::string& id, const CaseContext<System>& context) {
+  std::optional<int> order;
+  bool found = false;
+  std::apply([&](auto... claim) { ((!found && id == claim.id ? (found = true, order = claim.theorem_order(context), 0) : 0), ...); },
+             ClaimRegistry{});
+  if (!found) throw std::invalid_argument("no claim '" + id + "' is registered");
+  return order;
+}
+
+// A case may sharpen a theorem's prediction, never weaken it: every order in
+// "expect" must be at least the theorem's order for the case's discretization,
+// and only claims that predict an order take one. Throws CaseError naming
+// expect.<claim>, the declared and the theorem's order.
+template <LagrangianSystem System>
+void check_declared_orders(const CaseContext<System>& context) {
+  for (const auto& [id, declared] : context.spec.expect) {
+    const std::string field = "expect." + id;
+    std::optional<int> theorem = theorem_order(id, context);
+    if (!theorem)
+      throw CaseError(context.spec.file, field,
+                      id + " predicts no order for this case (an identity, exactness or an "
+                           "inconsistency), so there is none to declare");
+    if (declared < *theorem)
+      throw CaseError(context.spec.file, field,
+                      "declared order " + std::to_string(declared) + " is below the theorem's order " +
+                          std::to_string(*theorem) + " for this discretization: a case may sharpen a "
+                          "prediction, never weaken it");
+  }
+}
+
 // Evaluates the registered claim `id` on a case.
 template <LagrangianSystem System>
 ClaimResult evaluate_claim(const std::string& id, const CaseContext<System>& context) {

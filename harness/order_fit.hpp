@@ -39,6 +39,8 @@ struct FitOptions {
   double plateau_floor_factor = 1e6;
   // Two-sided confidence level of [confidence_low, confidence_high].
   double confidence = 0.95;
+  // The verdict also looks at this many pairwise orders at the small-h end of the fit.
+  int finest_orders = 2;
 };
 
 // A point left out of the fit: its index into the caller's arrays and why.
@@ -57,6 +59,9 @@ struct OrderFit {
   std::vector<int> sorted;       // every index, by decreasing h (ties in the caller's order)
   std::vector<double> pairwise_orders;  // between sorted[k] and sorted[k+1]; NaN where undefined
   std::vector<int> used;                // indices used in the fit, ascending
+  // The last FitOptions::finest_orders pairwise orders between consecutive used points
+  // (largest h first): the small-h end, where an asymptotic statement lives.
+  std::vector<double> finest_orders;
   std::vector<DroppedPoint> dropped;    // indices left out and why, ascending by index
   std::vector<std::string> notes;       // what the reader should know but no rule acted on
 };
@@ -113,7 +118,14 @@ void drop_pre_asymptotic(std::vector<LogPoint>& kept, std::vector<DroppedPoint>&
 // plateau rule and the pre-asymptotic rule, in that order.
 OrderFit fit_order_in_logs(std::vector<LogPoint> points, const FitOptions& options = {});
 
-// holds ⇔ fit.ok and order >= predicted − tolerance, or |order − predicted| <= tolerance if exact.
+// Whether an order agrees with the prediction: p >= predicted − tolerance, or
+// |p − predicted| <= tolerance if exact.
+bool order_agrees(double order, double predicted, bool exact, double tolerance);
+
+// holds ⇔ fit.ok, the fitted order agrees with the prediction and so does each of the finest
+// pairwise orders (an asymptotic statement is about small h: a fit pulled up by large-h points
+// cannot pass a sweep whose last steps converge more slowly). The explanation says which of the
+// two disagrees, and when an exact prediction lies outside the fit's confidence interval.
 OrderVerdict judge_order(const OrderFit& fit, double predicted, bool exact, double tolerance);
 
 // x written with `digits` significant digits, as a stream writes T ("1.2e-61", "0.5").

@@ -28,12 +28,16 @@ CaseResult run_case(const CaseSpec& case_spec, std::optional<int> digits,
     result.reference_method = context.reference.method();
     result.reference_tolerance = to_decimal<T>(context.reference.tolerance());
     result.reference_cross_check = context.reference.cross_check();
-    result.reference_error_estimate =
-        to_decimal<T>(context.reference.estimate_error(context.initial, context.final_time));
+    check_declared_orders(context);
+    result.reference_check = check_reference(context.reference, context.initial, context.final_time);
+    result.reference_error_estimate = result.reference_check.error_estimate;
     for (const auto& id : spec.claims) {
       if (progress) progress(spec.name + ": claim " + id);
       result.claims.push_back(evaluate_claim(id, context));
     }
+    apply_reference_check(result.claims, result.reference_check);
+    for (auto& claim : result.claims)
+      if (auto it = spec.xfail.find(claim.id); it != spec.xfail.end()) apply_expected_failure(claim, it->second);
     T smallest = 0;
     for (const auto& claim : result.claims)
       for (const auto& series : claim.series)

@@ -18,6 +18,7 @@ struct CaseResult {
   int precision_bits = 0;
   std::string reference_method, reference_tolerance, reference_cross_check;
   std::string reference_error_estimate;  // measured at T, from the cross-check
+  ReferenceCheck reference_check;
   std::vector<ClaimResult> claims;
   // DESIGN §1.6: bits >= −log2(smallest error) + guard. The smallest error of
   // any order-fitted series, and the guard bits the precision leaves below it.
@@ -27,8 +28,10 @@ struct CaseResult {
 };
 
 // Runs `spec` in MPFR with `digits` decimal digits (the case's own unless
-// overridden). Solver failures and non-regular Lagrangians propagate as
-// exceptions: they are bad input, not verdicts.
+// overridden). Solver failures, non-regular Lagrangians and declared orders
+// below the theorem's (CaseError) propagate as exceptions: they are bad input,
+// not verdicts. A reference that misses its own tolerance makes every claim
+// "error"; the case's xfail marks turn fail/pass into xfail/xpass.
 CaseResult run_case(const CaseSpec& spec, std::optional<int> digits,
                     const std::function<void(const std::string&)>& progress);
 

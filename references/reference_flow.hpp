@@ -134,6 +134,12 @@ class ReferenceFlow {
     }
   }
 
+  // The global accuracy the check itself promises, by extrapolation_flow's own
+  // rule (local tolerance = global / 10⁶). estimate_error() measures the
+  // distance of two approximations, so it confirms tolerance() only up to this:
+  // a closed form's few ulps rest on the unit tests at higher precision.
+  T check_tolerance() const { return check_local_tolerance() * 1000000; }
+
   // Smallest local tolerance of the check: 1000 ε (100 ε is reachable, but slowly).
   static T check_floor() { return 1000 * epsilon<T>(); }
 

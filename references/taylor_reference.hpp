@@ -90,6 +90,10 @@ class TaylorReference {
     return state_distance<T, n>(advance(start, t), check.advance(start, t));
   }
 
+  // The global accuracy the check itself promises, by this flow's own rule
+  // (step tolerance = tolerance · 10⁻³).
+  T check_tolerance() const { return check_step_tolerance() * 1000; }
+
   // e.g. "Taylor series, order 85 (Jorba–Zou), tol 1e-70".
   std::string method() const {
     std::string text = "Taylor series of the Euler–Lagrange field by Taylor-mode AD, order " +

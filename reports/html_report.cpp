@@ -8,6 +8,7 @@
 #include <sstream>
 #include <vector>
 
+#include "cases/case_file.hpp"
 #include "reports/report_text.hpp"
 
 namespace vivv {
@@ -37,6 +38,9 @@ pre { background: var(--panel); padding: 8px 10px; overflow-x: auto; border-radi
 .v-pass { color: var(--pass); background: var(--pass-bg); border-color: #9ad2ab; }
 .v-fail { color: var(--fail); background: var(--fail-bg); border-color: #f2a3ad; }
 .v-error { color: var(--error); background: var(--error-bg); border-color: #f0c36b; }
+.v-xfail { color: #4b5563; background: #eef0f3; border-color: #b8bec8; }
+.v-xpass { color: var(--fail); background: var(--fail-bg); border-color: #f2a3ad; border-style: dashed; }
+.note-cell { font-size: 12px; color: var(--muted); }
 .summary .verdict { font-size: 15px; padding: 4px 14px; }
 table { border-collapse: collapse; }
 table.findings { width: 100%; font-size: 13px; }
@@ -97,9 +101,11 @@ std::string decimal_html(const std::string& decimal) {
 }
 
 std::string verdict_badge(const std::string& verdict) {
-  std::string mark = verdict == "pass"   ? "&#10003; pass"
-                     : verdict == "fail" ? "&#10007; FAIL"
-                                         : "&#9888; ERROR";
+  std::string mark = verdict == "pass"    ? "&#10003; pass"
+                     : verdict == "fail"  ? "&#10007; FAIL"
+                     : verdict == "xfail" ? "&#8856; xfail"
+                     : verdict == "xpass" ? "&#10007; XPASS"
+                                          : "&#9888; ERROR";
   return "<span class=\"verdict v-" + escape(verdict) + "\" data-verdict=\"" + escape(verdict) +
          "\">" + mark + "</span>";
 }
@@ -717,6 +723,21 @@ std::string speed_map_figure(const json& claim, const std::string& key) {
   return out.str();
 }
 
+// What a reader must know beside the verdict: a non-default order tolerance
+// (it widens what an order claim accepts) and the case's xfail reason.
+std::string notes_html(const json& c, const json& claim) {
+  std::string notes;
+  const std::string tolerance = text_of(c, "order_tolerance");
+  if (claim.value("predicted_order", json()).is_number() && !tolerance.empty() &&
+      std::stold(tolerance) != std::stold(default_order_tolerance))
+    notes += "<div class=\"note-cell\" data-note=\"tolerance\">order tolerance " + escape(tolerance) +
+             " (default " + default_order_tolerance + ")</div>";
+  if (claim.contains("xfail_reason"))
+    notes += "<div class=\"note-cell\" data-note=\"xfail\">known failure: " +
+             escape(text_of(claim, "xfail_reason")) + "</div>";
+  return notes;
+}
+
 // One claim's findings row.
 // The case cell spans the case's rows (`case_rows` > 0 on its first row, 0 on the others).
 std::string findings_row(const json& c, const json& claim, const std::string& key,
@@ -734,7 +755,7 @@ std::string findings_row(const json& c, const json& claim, const std::string& ke
       << escape(text_of(claim, "prediction")) << "</div></td>"
       << "<td class=\"num\">" << observed_html(claim) << "</td>"
       << "<td>" << verdict_badge(verdict) << "</td>"
-      << "<td>" << why_html(claim) << "</td></tr>\n";
+      << "<td>" << why_html(claim) << notes_html(c, claim) << "</td></tr>\n";
   return row.str();
 }
 
@@ -872,21 +893,25 @@ std::string render_html(const json& report) {
   const json& cases = report.at("cases");
   const json& summary = report.at("summary");
   const json& run = report.at("run");
-  int total = summary["pass"].get<int>() + summary["fail"].get<int>() + summary["error"].get<int>();
+  int total = 0;
+  std::string counts, badges;
+  for (const auto& [verdict, count] : summary.items()) total += count.get<int>();
+  for (const char* verdict : {"pass", "fail", "error", "xfail", "xpass"}) {
+    const int count = summary.value(verdict, 0);
+    counts += std::string(counts.empty() ? "" : ", ") + std::to_string(count) + " " + verdict;
+    badges += "<span class=\"verdict v-" + std::string(verdict) + "\" data-count=\"" + verdict + "\">" +
+              std::to_string(count) + " " + verdict + "</span>";
+  }
   std::ostringstream page;
   page << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
        << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-       << "<title>vivv report: " << summary["pass"] << " pass, " << summary["fail"] << " fail, "
-       << summary["error"] << " error</title>\n<style>" << page_style
+       << "<title>vivv report: " << counts << "</title>\n<style>" << page_style
        << "</style>\n</head>\n<body>\n<main>\n";
   page << "<h1>vivv verification report</h1>\n<p class=\"lede\">" << cases.size() << " cases, "
        << total << " claims of the error analysis of variational integrators, each checked "
        << "against a near-exact reference flow. Schema <code>" << escape(text_of(report, "schema"))
        << "</code>.</p>\n";
-  page << "<div class=\"summary\" data-summary=\"1\"><span class=\"verdict v-pass\">&#10003; "
-       << summary["pass"] << " pass</span><span class=\"verdict v-fail\">&#10007; "
-       << summary["fail"] << " fail</span><span class=\"verdict v-error\">&#9888; "
-       << summary["error"] << " error</span></div>\n";
+  page << "<div class=\"summary\" data-summary=\"1\">" << badges << "</div>\n";
 
   // Keys and anchors, in report order.
   std::vector<std::tuple<const json*, const json*, std::string, std::string>> claims;

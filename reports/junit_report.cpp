@@ -52,21 +52,26 @@ std::string evidence_summary(const nlohmann::json& claim) {
 
 std::string render_junit(const nlohmann::json& report) {
   const auto& summary = report["summary"];
-  int total = summary["pass"].get<int>() + summary["fail"].get<int>() + summary["error"].get<int>();
+  int total = 0;
+  for (const auto& [verdict, count] : summary.items()) total += count.get<int>();
   const nlohmann::json seconds = report["run"].value("case_seconds", nlohmann::json::object());
+  // JUnit's words: a failing claim and an xpass (a known failure that went away) are failures,
+  // an xfail is skipped with its reason.
   std::ostringstream out;
   out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  out << "<testsuites name=\"vivv\" tests=\"" << total << "\" failures=\"" << summary["fail"]
-      << "\" errors=\"" << summary["error"] << "\">\n";
+  out << "<testsuites name=\"vivv\" tests=\"" << total << "\" failures=\""
+      << summary.value("fail", 0) + summary.value("xpass", 0) << "\" errors=\"" << summary.value("error", 0)
+      << "\" skipped=\"" << summary.value("xfail", 0) << "\">\n";
   for (const auto& c : report["cases"]) {
     std::string name = c["name"];
-    int failures = 0, errors = 0;
+    int failures = 0, errors = 0, skipped = 0;
     for (const auto& claim : c["claims"]) {
-      failures += claim["verdict"] == "fail";
+      failures += claim["verdict"] == "fail" || claim["verdict"] == "xpass";
       errors += claim["verdict"] == "error";
+      skipped += claim["verdict"] == "xfail";
     }
     out << "  <testsuite name=\"" << xml_escape(name) << "\" tests=\"" << c["claims"].size()
-        << "\" failures=\"" << failures << "\" errors=\"" << errors << "\"";
+        << "\" failures=\"" << failures << "\" errors=\"" << errors << "\" skipped=\"" << skipped << "\"";
     if (seconds.contains(name) && seconds[name].is_number())
       out << " time=\"" << format_number(seconds[name].get<double>(), 6) << "\"";
     out << ">\n";
@@ -74,11 +79,14 @@ std::string render_junit(const nlohmann::json& report) {
       std::string verdict = claim["verdict"], summary_text = evidence_summary(claim);
       out << "    <testcase classname=\"" << xml_escape(name) << "\" name=\""
           << xml_escape(claim["id"].get<std::string>()) << "\">\n";
-      if (verdict == "fail" || verdict == "error") {
-        const char* element = verdict == "fail" ? "failure" : "error";
+      if (verdict == "fail" || verdict == "error" || verdict == "xpass") {
+        const char* element = verdict == "error" ? "error" : "failure";
         out << "      <" << element << " type=\"" << verdict << "\" message=\""
             << xml_escape(string_field(claim, "explanation")) << "\">" << xml_escape(summary_text)
             << "</" << element << ">\n";
+      } else if (verdict == "xfail") {
+        out << "      <skipped message=\"xfail: " << xml_escape(string_field(claim, "xfail_reason"))
+            << "\"/>\n";
       }
       out << "      <system-out>" << xml_escape(summary_text) << "</system-out>\n";
       out << "    </testcase>\n";

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cases/case_file.hpp"
 #include "reports/html_report.hpp"
 #include "reports/junit_report.hpp"
 
@@ -37,6 +38,9 @@ nlohmann::json series_json(const Series& series) {
     nlohmann::json pairwise = nlohmann::json::array();
     for (double p : fit.pairwise_orders) pairwise.push_back(number(p));
     out["pairwise_orders"] = pairwise;
+    nlohmann::json finest = nlohmann::json::array();
+    for (double p : fit.finest_orders) finest.push_back(number(p));
+    out["finest_pairwise_orders"] = finest;
     nlohmann::json dropped = nlohmann::json::array();
     for (const auto& [index, reason] : fit.dropped)
       dropped.push_back({{"index", index}, {"reason", reason}});
@@ -60,6 +64,7 @@ nlohmann::json case_json(const CaseResult& result) {
                         {"verdict", claim.verdict},
                         {"explanation", claim.explanation},
                         {"evidence", claim.evidence}};
+    if (!claim.xfail_reason.empty()) c["xfail_reason"] = claim.xfail_reason;
     nlohmann::json all_series = nlohmann::json::array();
     for (const auto& series : claim.series) all_series.push_back(series_json(series));
     c["series"] = all_series;
@@ -68,7 +73,7 @@ nlohmann::json case_json(const CaseResult& result) {
       const nlohmann::json& main = all_series[0];
       for (const char* key : {"h", "error", "observed_order", "predicted_order", "exact_order",
                               "order_standard_error", "order_confidence_95", "pairwise_orders",
-                              "fit_points", "floor"})
+                              "finest_pairwise_orders", "fit_points", "floor"})
         if (main.contains(key)) c[key] = main[key];
     }
     claims.push_back(c);
@@ -81,6 +86,7 @@ nlohmann::json case_json(const CaseResult& result) {
           {"initial", {{"q", spec.q}, {"w", spec.w}}},
           {"T", spec.final_time},
           {"steps", spec.steps},
+          {"order_tolerance", spec.order_tolerance},
           {"labels", spec.labels},
           {"precision",
            {{"scalar", result.scalar},
@@ -93,13 +99,36 @@ nlohmann::json case_json(const CaseResult& result) {
            {{"method", result.reference_method},
             {"tolerance", result.reference_tolerance},
             {"cross_check", result.reference_cross_check},
-            {"error_estimate_at_T", result.reference_error_estimate}}},
+            {"error_estimate_at_T", result.reference_error_estimate},
+            {"error_estimate_allowed", result.reference_check.allowed},
+            {"within_tolerance", result.reference_check.holds}}},
           {"seconds", result.seconds},
           {"claims", claims}};
 }
 
+const std::vector<std::string>& verdict_names() {
+  static const std::vector<std::string> names = {"pass", "fail", "error", "xfail", "xpass"};
+  return names;
+}
+
+bool run_succeeded(const nlohmann::json& summary) {
+  return summary.value("fail", 0) + summary.value("error", 0) + summary.value("xpass", 0) == 0;
+}
+
+std::string summary_text(const nlohmann::json& summary) {
+  std::string text;
+  for (const auto& verdict : verdict_names())
+    text += (text.empty() ? "" : ", ") + std::to_string(summary.value(verdict, 0)) + " " + verdict;
+  return text;
+}
+
+bool default_tolerance(const std::string& tolerance) {
+  return tolerance.empty() || std::stold(tolerance) == std::stold(default_order_tolerance);
+}
+
 nlohmann::json verdict_counts(const nlohmann::json& cases) {
-  nlohmann::json counts = {{"pass", 0}, {"fail", 0}, {"error", 0}};
+  nlohmann::json counts = nlohmann::json::object();
+  for (const auto& verdict : verdict_names()) counts[verdict] = 0;
   for (const auto& c : cases)
     for (const auto& claim : c["claims"])
       counts[claim["verdict"].get<std::string>()] =
@@ -215,36 +244,49 @@ void write_atomically(const std::string& path, const std::string& content) {
 
 void print_claims_table(std::ostream& out, const nlohmann::json& report) {
   struct Row {
-    std::string name, claim, verdict, observed, predicted;
+    std::string name, claim, verdict, observed, predicted, note;
   };
-  std::vector<Row> rows{{"case", "claim", "verdict", "observed", "predicted"}};
+  std::vector<Row> rows{{"case", "claim", "verdict", "observed", "predicted", "note"}};
   auto order_text = [](const nlohmann::json& value, int decimals) {
     if (!value.is_number()) return std::string("-");
     std::ostringstream s;
     s << std::fixed << std::setprecision(decimals) << value.get<double>();
     return s.str();
   };
-  for (const auto& c : report["cases"])
-    for (const auto& claim : c["claims"])
+  for (const auto& c : report["cases"]) {
+    const std::string tolerance = c.value("order_tolerance", std::string());
+    for (const auto& claim : c["claims"]) {
+      const bool ordered = claim.value("predicted_order", nlohmann::json()).is_number();
+      std::string note;
+      if (ordered && !default_tolerance(tolerance)) note = "order tolerance " + tolerance;
+      if (claim.contains("xfail_reason"))
+        note += (note.empty() ? "" : "; ") + std::string("xfail: ") + claim["xfail_reason"].get<std::string>();
       rows.push_back({c["name"], claim["id"], claim["verdict"],
                       order_text(claim.value("observed_order", nlohmann::json()), 2),
                       order_text(claim.value("predicted_order", nlohmann::json()), 0) +
-                          (claim.value("exact_order", false) ? " (exact)" : "")});
-  std::size_t widths[4] = {0, 0, 0, 0};
+                          (claim.value("exact_order", false) ? " (exact)" : ""),
+                      note});
+    }
+  }
+  std::size_t widths[5] = {0, 0, 0, 0, 0};
   for (const auto& row : rows) {
     widths[0] = std::max(widths[0], row.name.size());
     widths[1] = std::max(widths[1], row.claim.size());
     widths[2] = std::max(widths[2], row.verdict.size());
     widths[3] = std::max(widths[3], row.observed.size());
+    widths[4] = std::max(widths[4], row.predicted.size());
   }
   for (const auto& row : rows) {
-    out << std::left << std::setw(widths[0] + 2) << row.name << std::setw(widths[1] + 2)
-        << row.claim << std::setw(widths[2] + 2) << row.verdict << std::right
-        << std::setw(widths[3]) << row.observed << "  " << row.predicted << "\n";
+    std::ostringstream line;
+    line << std::left << std::setw(widths[0] + 2) << row.name << std::setw(widths[1] + 2)
+         << row.claim << std::setw(widths[2] + 2) << row.verdict << std::right
+         << std::setw(widths[3]) << row.observed << "  " << std::left << std::setw(widths[4] + 2)
+         << row.predicted << row.note;
+    std::string text = line.str();
+    text.erase(text.find_last_not_of(' ') + 1);
+    out << text << "\n";
   }
-  const auto& summary = report["summary"];
-  out << "claims: " << summary["pass"] << " pass, " << summary["fail"] << " fail, "
-      << summary["error"] << " error\n";
+  out << "claims: " << summary_text(report["summary"]) << "\n";
 }
 
 }  // namespace vivv

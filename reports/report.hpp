@@ -1,4 +1,4 @@
-// The report model and its renderers: report.json (schema "vivv-report/2",
+// The report model and its renderers: report.json (schema "vivv-report/3",
 // documented in reports/SCHEMA.md and reports/schema.json), the console claims
 // table, and the report directory (report.json, report.html, junit.xml).
 #pragma once
@@ -14,7 +14,7 @@
 
 namespace vivv {
 
-inline constexpr const char* report_schema = "vivv-report/2";
+inline constexpr const char* report_schema = "vivv-report/3";
 
 struct RunInfo {
   std::string command_line;
@@ -58,7 +58,19 @@ void write_atomically(const std::string& path, const std::string& content);
 // The aligned claims table: case, claim, verdict, observed and predicted order.
 void print_claims_table(std::ostream& out, const nlohmann::json& report);
 
-// Overall verdict counts from a report: {"pass": n, "fail": n, "error": n}.
+// Every verdict a claim can have, in the order summaries list them.
+const std::vector<std::string>& verdict_names();
+
+// Overall verdict counts from a report: {"pass": n, "fail": n, "error": n, "xfail": n, "xpass": n}.
 nlohmann::json verdict_counts(const nlohmann::json& cases);
+
+// "3 pass, 0 fail, 0 error, 1 xfail, 0 xpass".
+std::string summary_text(const nlohmann::json& summary);
+
+// A run succeeds when no claim fails, errs, or passes although marked as a known failure.
+bool run_succeeded(const nlohmann::json& summary);
+
+// Whether a case's order_tolerance is the default (then reports need not show it).
+bool default_tolerance(const std::string& tolerance);
 
 }  // namespace vivv

@@ -21,7 +21,7 @@ except ImportError:
 
 
 def semantic_errors(report):
-    counts = {"pass": 0, "fail": 0, "error": 0}
+    counts = {"pass": 0, "fail": 0, "error": 0, "xfail": 0, "xpass": 0}
     names = set()
     for case in report["cases"]:
         if case["name"] in names:

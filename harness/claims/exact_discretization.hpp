@@ -21,6 +21,12 @@ struct ExactDiscretizationClaim {
   // times the reference tolerance, relative to the state's size, bounds them all.
   static constexpr int tolerance_factor = 10;
 
+  // Exactness, not an order.
+  template <LagrangianSystem System>
+  static std::optional<int> theorem_order(const CaseContext<System>&) {
+    return std::nullopt;
+  }
+
   template <LagrangianSystem System>
   static ClaimResult evaluate(const CaseContext<System>& context) {
     using T = typename System::Scalar;

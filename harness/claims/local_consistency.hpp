@@ -19,13 +19,18 @@ struct LagrangianOrderClaim {
   static constexpr const char* prediction =
       "|L_d(q(0), q(h); h) − ∫₀ʰ L(q, q') dt| = O(h^{r+1}) along solutions";
 
+  // r + 1, r the order of L_d with its twin term.
+  template <LagrangianSystem System>
+  static std::optional<int> theorem_order(const CaseContext<System>& context) {
+    return context.lagrangian_order() + 1;
+  }
+
   template <LagrangianSystem System>
   static ClaimResult evaluate(const CaseContext<System>& context) {
     using T = typename System::Scalar;
     constexpr int n = System::dimension;
     ClaimResult claim = claim_result_for(id, source, prediction);
-    auto expected = context.expected(id);
-    double predicted = expected ? *expected : context.order() + 1;
+    const OrderPrediction predicted = context.predict(id, context.lagrangian_order() + 1);
     // L_d^E(q(0), q(h); h) by Newton shooting on the Taylor flow and the action
     // by composite Gauss–Legendre (references/exact_discrete_lagrangian.hpp).
     // Shooting must recover the solution's own initial velocity: that mismatch
@@ -56,7 +61,7 @@ struct LagrangianOrderClaim {
         "Gauss-Legendre, " + std::to_string(nodes) + " nodes per Taylor step";
     claim.evidence["shooting_velocity_mismatch"] = to_decimal<T>(velocity_mismatch);
     claim.series.push_back(make_series("|L_d − L_d^E|", context.steps(), error, context.floor(),
-                                       predicted, expected.has_value(), context.order_tolerance));
+                                       predicted.order, predicted.exact, context.order_tolerance));
     conclude(claim);
     return claim;
   }
@@ -69,13 +74,18 @@ struct LegendreOrderClaim {
       "p_end(q(0), q(h)) − p(h) and p_begin(q(0), q(h)) − p(0) are O(h^r), not O(h^{r+1}); "
       "their leading coefficients are equal, so their difference is O(h^{r+1})";
 
+  // r, the order of L_d with its twin term (exact: r + 1 would confirm Marsden–West).
+  template <LagrangianSystem System>
+  static std::optional<int> theorem_order(const CaseContext<System>& context) {
+    return context.lagrangian_order();
+  }
+
   template <LagrangianSystem System>
   static ClaimResult evaluate(const CaseContext<System>& context) {
     using T = typename System::Scalar;
     constexpr int n = System::dimension;
     ClaimResult claim = claim_result_for(id, source, prediction);
-    auto expected = context.expected(id);
-    double predicted = expected ? *expected : context.order();
+    const int predicted = context.predict(id, context.lagrangian_order()).order;
     Vector<T, n> p_start = momentum(context.system, context.initial.q, context.initial.w);
     std::vector<T> end_error, begin_error, difference;
     for (const T& h : context.steps()) {

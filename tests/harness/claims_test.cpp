@@ -84,7 +84,11 @@ TYPED_TEST(ClaimsTest, TwinTermCancelsInTheDelButNotInAMismatchedOne) {
             "fail");
 }
 
-TYPED_TEST(ClaimsTest, MismatchedTwinsAreInconsistentAndAMatchedPairIsNot) {
+// DESIGN §1.4 for every pair (s, s̃): a·h vs none is inconsistent; identical twins are no
+// mismatch (order r); a·h² vs none shifts the force by O(h): consistent at order 1. Negative
+// control: the same a·h² mismatch declared to keep the midpoint's order 2.
+TYPED_TEST(ClaimsTest, MismatchedTwinsLoseWhatTheMismatchCosts) {
+  const nlohmann::json midpoint_s2 = {{"kind", "midpoint"}, {"twin", {{"a", {"1"}}, {"power", 2}}}};
   EXPECT_EQ(this->verdict("mismatched-legendre", {{"system", paper},
                                                   {"discretization", left_rectangle_twin},
                                                   {"past_discretization", left_rectangle}})
@@ -94,7 +98,68 @@ TYPED_TEST(ClaimsTest, MismatchedTwinsAreInconsistentAndAMatchedPairIsNot) {
                                                   {"discretization", left_rectangle_twin},
                                                   {"past_discretization", left_rectangle_twin}})
                 .substr(0, 4),
+            "pass");
+  EXPECT_EQ(this->verdict("mismatched-legendre",
+                          {{"system", paper}, {"discretization", midpoint_s2}, {"past_discretization", midpoint}})
+                .substr(0, 4),
+            "pass");
+  EXPECT_EQ(this->verdict("mismatched-legendre", {{"system", paper},
+                                                  {"discretization", midpoint_s2},
+                                                  {"past_discretization", midpoint},
+                                                  {"expect", {{"mismatched-legendre", 2}}}})
+                .substr(0, 4),
             "fail");
+}
+
+// A twin term a·h·(q_e − q_b) on the midpoint rule makes an order-1 L_d whose map stays
+// order 2: lagrangian-order predicts >= 2, legendre-order exactly 1, global-order 2.
+TYPED_TEST(ClaimsTest, TwinTermLowersTheLagrangianOrderButNotTheMapOrder) {
+  const nlohmann::json midpoint_twin = {{"kind", "midpoint"}, {"twin", {{"a", {"1"}}, {"power", 1}}}};
+  for (const char* claim : {"lagrangian-order", "legendre-order"})
+    EXPECT_EQ(this->verdict(claim, {{"system", paper}, {"discretization", midpoint_twin}}).substr(0, 4), "pass")
+        << claim;
+  EXPECT_EQ(this->verdict("global-order", {{"system", paper},
+                                           {"discretization", midpoint_twin},
+                                           {"expect", {{"global-order", 2}}}})
+                .substr(0, 4),
+            "pass");
+}
+
+// A declared order may sharpen the theorem's, never weaken it: below the bound, or for a
+// claim with no order, is bad input naming the field and both orders.
+TYPED_TEST(ClaimsTest, DeclaredOrdersBelowTheTheoremAreBadInput) {
+  auto check = [](nlohmann::json json) {
+    json["name"] = "test";
+    json["T"] = "2";
+    json["steps"] = {32, 64, 128};
+    json["initial"] = {{"q", {"0.5"}}, {"w", {"0.75"}}};
+    CaseSpec spec = parse_case(json, "test.json");
+    std::vector<std::string> parameters;
+    for (const auto& [name, value] : spec.parameters) parameters.push_back(value);
+    visit_system<TypeParam>(spec.system, parameters, [&](auto system) {
+      CaseContext context(spec, system, {});
+      check_declared_orders(context);
+      return 0;
+    });
+  };
+  try {
+    check({{"system", paper}, {"discretization", midpoint}, {"claims", {"global-order"}},
+           {"expect", {{"global-order", 1}}}});
+    ADD_FAILURE() << "a declared order 1 below the midpoint's 2 was accepted";
+  } catch (const CaseError& error) {
+    EXPECT_EQ(error.field, "expect.global-order");
+    EXPECT_NE(std::string(error.what()).find("declared order 1 is below the theorem's order 2"), std::string::npos)
+        << error.what();
+  }
+  EXPECT_THROW(check({{"system", paper}, {"discretization", left_rectangle_twin}, {"claims", {"twin-term-invariance"}},
+                      {"expect", {{"twin-term-invariance", 1}}}}),
+               CaseError);
+  EXPECT_NO_THROW(check({{"system", paper}, {"discretization", midpoint}, {"claims", {"global-order"}},
+                         {"expect", {{"global-order", 3}}}}));
+  // Order 0 is no convergence statement: refused when the case file is read.
+  EXPECT_THROW(check({{"system", paper}, {"discretization", midpoint}, {"claims", {"global-order"}},
+                      {"expect", {{"global-order", 0}}}}),
+               CaseError);
 }
 
 const nlohmann::json tq_left_rectangle = {{"formalism", "tq"},  {"psi", "linear"},
@@ -146,6 +211,58 @@ TYPED_TEST(ClaimsTest, ExistenceUniquenessHasPositiveStepsAtEverySpeed) {
                           })
                 .substr(0, 4),
             "fail");
+}
+
+// A reference whose own cross-check misses its promised tolerance turns every claim into
+// "error" with the numbers. The broken reference: the pendulum's closed form shifted by a
+// thousand times what it and its check promise (1e-7 in double, 1e-29 in quad), while still
+// promising its few ulps.
+template <class T>
+struct ShiftedReference : ReferenceFlow<Pendulum<T>> {
+  using ReferenceFlow<Pendulum<T>>::ReferenceFlow;
+  State<T, 1> advance(const State<T, 1>& start, const T& t) const {
+    State<T, 1> end = ReferenceFlow<Pendulum<T>>::advance(start, t);
+    end.q[0] += 1000 * (this->tolerance() + this->check_tolerance());
+    return end;
+  }
+  T estimate_error(const State<T, 1>& start, const T& t) const {
+    return state_distance<T, 1>(advance(start, t), ReferenceFlow<Pendulum<T>>::advance(start, t));
+  }
+};
+
+TYPED_TEST(ClaimsTest, AReferenceThatMissesItsToleranceMakesEveryClaimAnError) {
+  using T = TypeParam;
+  State<T, 1> start;
+  start.q[0] = from_decimal<T>("1.1");
+  start.w[0] = from_decimal<T>("0.25");
+  const T final_time = 2;
+  Pendulum<T> pendulum{T(1)};
+  const ReferenceCheck sound = check_reference(ReferenceFlow<Pendulum<T>>(pendulum, from_decimal<T>("1e-30")), start, final_time);
+  EXPECT_TRUE(sound.holds) << sound.error_estimate << " > " << sound.allowed;
+  const ReferenceCheck broken = check_reference(ShiftedReference<T>(pendulum, from_decimal<T>("1e-30")), start, final_time);
+  ASSERT_FALSE(broken.holds);
+  std::vector<ClaimResult> claims(2);
+  claims[0].verdict = "pass";
+  claims[1].verdict = "fail";
+  apply_reference_check(claims, broken);
+  for (const auto& claim : claims) {
+    EXPECT_EQ(claim.verdict, "error");
+    EXPECT_NE(claim.explanation.find(broken.error_estimate), std::string::npos) << claim.explanation;
+  }
+  EXPECT_EQ(claims[0].evidence["verdict_before_reference_check"], "pass");
+}
+
+TEST(ExpectedFailure, FailBecomesXfailAndPassBecomesXpass) {
+  ClaimResult failing, passing, erring;
+  failing.verdict = "fail";
+  passing.verdict = "pass";
+  erring.verdict = "error";
+  for (auto* claim : {&failing, &passing, &erring}) apply_expected_failure(*claim, "known");
+  EXPECT_EQ(failing.verdict, "xfail");
+  EXPECT_EQ(passing.verdict, "xpass");
+  EXPECT_EQ(erring.verdict, "error");
+  EXPECT_NE(failing.explanation.find("known"), std::string::npos);
+  EXPECT_EQ(passing.xfail_reason, "known");
 }
 
 TEST(ClaimRegistry, EveryClaimACaseMayNameIsRegistered) {

@@ -434,8 +434,46 @@ TYPED_TEST(OrderFitTest, ExactVerdictRejectsAnOrderThreeSweepDeclaredExactlyTwo)
   EXPECT_TRUE(judge_order(fit, 2, false, 0.25).holds);
   const OrderVerdict exact = judge_order(fit, 2, true, 0.25);
   EXPECT_FALSE(exact.holds) << exact.explanation;
-  EXPECT_TRUE(contains(exact.explanation, "outside 2 ± 0.25")) << exact.explanation;
+  EXPECT_TRUE(contains(exact.explanation, "not within 2 ± 0.25")) << exact.explanation;
   EXPECT_TRUE(judge_order(fit, 3, true, 0.25).holds);
+}
+
+// The small-h end decides. e = h² + 1e-5 is a scheme that stops converging (a tiny
+// inconsistency): over h = 1/8 … 1/256 the fit is 1.88, inside 2 − 0.2, but the last pairwise
+// orders are 1.84 and 1.49. The verdict fails and says the finest orders are why.
+TYPED_TEST(OrderFitTest, VerdictFailsWhenTheFinestPairwiseOrdersFallAway) {
+  using T = TypeParam;
+  const std::vector<T> h = geometric_steps<T>("0.125", "2", 6);
+  std::vector<T> error;
+  for (const T& step : h) error.push_back(step * step + from_decimal<T>("1e-5"));
+  const OrderFit fit = fit_order(h, error, T(0));
+  ASSERT_TRUE(fit.ok) << fit.reason;
+  EXPECT_GE(fit.order, 1.8);
+  ASSERT_EQ(fit.finest_orders.size(), 2u);
+  EXPECT_LT(fit.finest_orders.back(), 1.6);
+  for (bool exact : {false, true}) {
+    const OrderVerdict verdict = judge_order(fit, 2, exact, 0.2);
+    EXPECT_FALSE(verdict.holds) << verdict.explanation;
+    EXPECT_TRUE(contains(verdict.explanation, "but the finest pairwise orders")) << verdict.explanation;
+  }
+}
+
+// A real order-2 error with a pre-asymptotic start, e = h²(1 + 20h) from h = 1/2: the first
+// pairwise orders are 2.9, 2.8, …; the fit drops them and the finest orders (2.18, 2.10) and the
+// fit agree with order >= 2.
+TYPED_TEST(OrderFitTest, VerdictPassesAnOrderTwoSweepWithAPreAsymptoticStart) {
+  using T = TypeParam;
+  const std::vector<T> h = geometric_steps<T>("0.5", "2", 8);
+  const OrderFit fit = fit_order(h, power_law(h, T(1), T(2), T(20)), T(0));
+  ASSERT_TRUE(fit.ok) << fit.reason;
+  EXPECT_FALSE(fit.dropped.empty());
+  const OrderVerdict verdict = judge_order(fit, 2, false, 0.2);
+  EXPECT_TRUE(verdict.holds) << verdict.explanation;
+  // The same sweep with the finest orders not yet within an exact 2 ± 0.05 fails, and says the
+  // fit's interval excludes 2.
+  const OrderVerdict exact = judge_order(fit, 2, true, 0.05);
+  EXPECT_FALSE(exact.holds) << exact.explanation;
+  EXPECT_TRUE(contains(exact.explanation, "interval excludes the predicted 2")) << exact.explanation;
 }
 
 // ---------------------------------------------------------------- MPFR beyond long double

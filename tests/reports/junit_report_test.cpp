@@ -1,6 +1,7 @@
 // junit.xml on a small synthetic report: every claim a test case, failing
 // claims with a <failure> carrying the explanation and the evidence summary.
 #include "reports/junit_report.hpp"
+#include "reports/report.hpp"
 
 #include <gtest/gtest.h>
 
@@ -24,11 +25,30 @@ TEST(JunitReport, EveryClaimIsATestCase) {
   EXPECT_NE(xml.find("<testcase classname=\"alpha\" name=\"global-order\">"), std::string::npos);
   EXPECT_NE(xml.find("<testcase classname=\"beta\" name=\"twin-term-invariance\">"),
             std::string::npos);
-  EXPECT_NE(xml.find("<testsuites name=\"vivv\" tests=\"3\" failures=\"1\" errors=\"0\">"),
+  EXPECT_NE(xml.find("<testsuites name=\"vivv\" tests=\"3\" failures=\"1\" errors=\"0\" skipped=\"0\">"),
             std::string::npos);
-  EXPECT_NE(
-      xml.find("<testsuite name=\"alpha\" tests=\"2\" failures=\"1\" errors=\"0\" time=\"0.25\">"),
-      std::string::npos);
+  EXPECT_NE(xml.find("<testsuite name=\"alpha\" tests=\"2\" failures=\"1\" errors=\"0\" skipped=\"0\" "
+                     "time=\"0.25\">"),
+            std::string::npos);
+}
+
+// A known failure is skipped with its reason; a known failure that went away (xpass) fails.
+TEST(JunitReport, ExpectedFailureIsSkippedAndAnUnexpectedPassFails) {
+  nlohmann::json report = testing::synthetic_report();
+  auto& claims = report["cases"][0]["claims"];
+  claims[1]["verdict"] = "xfail";
+  claims[1]["xfail_reason"] = "β ≠ 1/2 <is> order 1";
+  claims[0]["verdict"] = "xpass";
+  claims[0]["xfail_reason"] = "was broken";
+  report["summary"] = verdict_counts(report["cases"]);
+  const std::string xml = render_junit(report);
+  EXPECT_NE(xml.find("<skipped message=\"xfail: β ≠ 1/2 &lt;is&gt; order 1\"/>"), std::string::npos) << xml;
+  EXPECT_NE(xml.find("<failure type=\"xpass\""), std::string::npos) << xml;
+  EXPECT_NE(xml.find("tests=\"3\" failures=\"1\" errors=\"0\" skipped=\"1\">"), std::string::npos) << xml;
+  EXPECT_FALSE(run_succeeded(report["summary"]));
+  claims[0]["verdict"] = "pass";
+  report["summary"] = verdict_counts(report["cases"]);
+  EXPECT_TRUE(run_succeeded(report["summary"])) << report["summary"];
 }
 
 TEST(JunitReport, FailingClaimCarriesExplanationAndEvidence) {
