@@ -286,9 +286,11 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   if (spec.past_discretization && spec.discretization.formalism == "tq") {
     // A mismatched TQ pair is measured only where it is a negative control.
     for (const auto& id : spec.claims)
-      if (id != "past-future-symmetry" && id != "twin-term-invariance")
-        reader.fail("past_discretization", "a TQ past_discretization is used by past-future-symmetry "
-                                           "and twin-term-invariance only, not by " + id);
+      if (id != "past-future-symmetry" && id != "twin-term-invariance" && id != "contact-order" &&
+          id != "qxq-tq-equivalence")
+        reader.fail("past_discretization", "a TQ past_discretization is used by past-future-symmetry, "
+                                           "twin-term-invariance, contact-order and qxq-tq-equivalence only "
+                                           "(as their negative controls), not by " + id);
     if (fraction_value(spec.past_discretization->tq->theta) != fraction_value(spec.discretization.tq->theta))
       reader.fail("past_discretization", "expected the same theta as discretization");
   }

@@ -60,23 +60,23 @@ struct TQStep {
   SolveReport<T> report;
 };
 
-// F_h(v) by Newton on the blown-up equations from the h = 0 solution ṽ = v.
-// The report says whether it converged; callers that need the step use
-// require_converged. A mismatched step takes d+ and P+ at v from `past` and
-// d− and P− at ṽ from `future` (the TQ form of the mismatched DEL, paper §2.3).
+// F_h(v) by Newton on the blown-up equations from the unknowns `start` =
+// (z, w̃) (the h = 0 solution is z = w̃ = w). The report says whether it
+// converged; callers that need the step use require_converged. A mismatched
+// step takes d+ and P+ at v from `past` and d− and P− at ṽ from `future` (the
+// TQ form of the mismatched DEL, paper §2.3).
 template <LagrangianSystem System>
-TQStep<typename System::Scalar, System::dimension> tq_step(
+TQStep<typename System::Scalar, System::dimension> tq_step_from(
     const System& system, const TQDiscretization<typename System::Scalar>& past,
     const TQDiscretization<typename System::Scalar>& future,
     const State<typename System::Scalar, System::dimension>& v, const typename System::Scalar& h,
-    const NewtonOptions& options = {}) {
+    const Vector<typename System::Scalar, 2 * System::dimension>& start, const NewtonOptions& options = {}) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
   constexpr int m = 2 * n;
   using J = Jet<T, m, 1>;  // the Jacobian needs first derivatives only
   auto at_v = tq_legendre(system, past, tangent_point(v), h);
-  Vector<T, m> x;
-  for (int i = 0; i < n; ++i) x[i] = v.w[i], x[n + i] = v.w[i];
+  Vector<T, m> x = start;
   // The residual rounds at ε·|q|/h (its first block divides a difference of
   // configurations by h): z cannot be resolved below that, and q̃ = q + h z
   // is then still at working precision. A pulled-back L_h evaluates L_d at
@@ -102,6 +102,25 @@ TQStep<typename System::Scalar, System::dimension> tq_step(
     step.next.w[i] = x[n + i];
   }
   return step;
+}
+
+// The h = 0 solution of the blown-up equations, z = w̃ = w: where Newton starts.
+template <class T, int n>
+Vector<T, 2 * n> blown_up_identity(const State<T, n>& v) {
+  Vector<T, 2 * n> x;
+  for (int i = 0; i < n; ++i) x[i] = v.w[i], x[n + i] = v.w[i];
+  return x;
+}
+
+// F_h(v) by Newton from the h = 0 solution ṽ = v (Theorem 4.2: the critical
+// point near the diagonal).
+template <LagrangianSystem System>
+TQStep<typename System::Scalar, System::dimension> tq_step(
+    const System& system, const TQDiscretization<typename System::Scalar>& past,
+    const TQDiscretization<typename System::Scalar>& future,
+    const State<typename System::Scalar, System::dimension>& v, const typename System::Scalar& h,
+    const NewtonOptions& options = {}) {
+  return tq_step_from(system, past, future, v, h, blown_up_identity(v), options);
 }
 
 // F_h(v) of one discretization (past = future = d).

@@ -5,6 +5,7 @@
 //   qxq-tq-equivalence:   Psi(F_h(v)) = DEL(Psi(v)), Psi = (d−, d+)  (Lemma 6.1)
 //   existence-uniqueness: Newton from the h = 0 solution converges for
 //                         h <= h_max(v), h_max(v) > 0 however fast v is;
+//                         the critical point is unique near the diagonal;
 //                         F_h(v) − v = O(h)                           (Theorem 4.2)
 #pragma once
 
@@ -15,13 +16,15 @@
 
 namespace vivv {
 
-// F_h(v) from the case's initial state, or an error naming h.
+// F_h(v) from the case's initial state, or an error naming h; mismatched (d+
+// and P+ at v from `past`) when `past` is given.
 template <LagrangianSystem System>
 State<typename System::Scalar, System::dimension> tq_map(const CaseContext<System>& context,
                                                          const TQDiscretization<typename System::Scalar>& d,
-                                                         const typename System::Scalar& h) {
+                                                         const typename System::Scalar& h,
+                                                         const TQDiscretization<typename System::Scalar>* past = nullptr) {
   using T = typename System::Scalar;
-  auto step = tq_step(context.system, d, context.initial, h);
+  auto step = tq_step(context.system, past ? *past : d, d, context.initial, h);
   require_converged(step.report, "TQ step with h = " + to_decimal<T>(h));
   return step.next;
 }
@@ -64,25 +67,35 @@ struct ContactOrderClaim {
       "two discretizations in order-r contact have evolutions agreeing to O(h^{r+1}); r is their "
       "mutual order of contact, not the lower of their orders against the exact discretization";
 
-  // r + 1, r the two discretizations' mutual order of contact.
+  // r, the two discretizations' mutual order of contact. A past_discretization makes the first
+  // evolution mismatched (its negative control): r is then the lower contact of its two sides.
+  template <LagrangianSystem System>
+  static int mutual_order(const CaseContext<System>& context) {
+    int r = contact_order(*context.tq, *context.tq_compare);
+    if (context.tq_past) r = std::min(r, contact_order(*context.tq_past, *context.tq_compare));
+    return r;
+  }
+
+  // r + 1.
   template <LagrangianSystem System>
   static std::optional<int> theorem_order(const CaseContext<System>& context) {
-    return contact_order(*context.tq, *context.tq_compare) + 1;
+    return mutual_order(context) + 1;
   }
 
   template <LagrangianSystem System>
   static ClaimResult evaluate(const CaseContext<System>& context) {
     using T = typename System::Scalar;
     ClaimResult claim = claim_result_for(id, source, prediction);
-    const int r = contact_order(*context.tq, *context.tq_compare);
+    const int r = mutual_order(context);
     const OrderPrediction predicted = context.predict(id, r + 1);
     std::vector<T> difference;
     for (const T& h : context.steps()) {
       context.report("contact-order at h = " + to_decimal<T>(h));
-      difference.push_back(state_distance(tq_map(context, *context.tq, h),
+      difference.push_back(state_distance(tq_map(context, *context.tq, h, context.tq_past ? &*context.tq_past : nullptr),
                                           tq_map(context, *context.tq_compare, h)));
     }
     claim.evidence["contact_order_r"] = r;
+    claim.evidence["mismatched_first_evolution"] = context.tq_past.has_value();
     claim.evidence["orders_against_exact"] = {nominal_order(*context.tq), nominal_order(*context.tq_compare)};
     claim.series.push_back(make_series("|F²_h(v) − F¹_h(v)|", context.steps(), difference,
                                        context.floor(), predicted.order, predicted.exact,
@@ -123,7 +136,9 @@ struct QxQTQEquivalenceClaim {
     nlohmann::json rows = nlohmann::json::array();
     for (const T& h : context.steps()) {
       context.report("qxq-tq-equivalence at h = " + to_decimal<T>(h));
-      auto states = tq_trajectory(context.system, d, context.initial, h, compared_steps);
+      // A past_discretization makes the TQ steps mismatched: the negative control.
+      auto states = tq_trajectory(context.system, context.tq_past ? *context.tq_past : d, d, context.initial, h,
+                                  compared_steps);
       // The DEL from Psi(v_0) = (d−(v_0), d+(v_0)).
       auto v0 = tangent_point(states[0]);
       auto del = del_trajectory(context.system, matched_scheme(d.qxq),
@@ -148,6 +163,7 @@ struct QxQTQEquivalenceClaim {
                       {"holds", holds}});
     }
     claim.evidence["per_step"] = rows;
+    claim.evidence["mismatched_tq_steps"] = context.tq_past.has_value();
     Series series = make_series<T>("max_k |Psi(v_k) − (q_k, q_{k+1})|", context.steps(), gaps,
                                    context.floor(), std::nullopt, false, context.order_tolerance);
     series.holds = all_hold;
@@ -205,37 +221,100 @@ struct ExistenceUniquenessClaim {
     return 1;
   }
 
+  // Uniqueness near the diagonal at one h: Newton from 4n starts around the h = 0 solution,
+  // (w, w) ± ρ e_j in the blown-up unknowns with ρ = (1 + |w|)/4, each of which that converges
+  // must land on F_h(v) to rounding (1024 ε·max(1, |v|)/min(1, h): z = (q̃ − q)/h and, for a
+  // pullback, w̃ round at ε|q|/h).
+  template <class T>
+  struct UniquenessProbe {
+    int starts = 0, converged = 0;
+    T largest_distance = 0, tolerance = 0;
+  };
+
+  template <LagrangianSystem System>
+  static UniquenessProbe<typename System::Scalar> probe_uniqueness(
+      const CaseContext<System>& context, const State<typename System::Scalar, System::dimension>& next,
+      const typename System::Scalar& h) {
+    using T = typename System::Scalar;
+    constexpr int n = System::dimension;
+    using std::max, std::min;
+    const State<T, n>& v = context.initial;
+    UniquenessProbe<T> probe;
+    const T size = max(T(1), max(max_norm<T, n>(v.q), max_norm<T, n>(v.w)));
+    probe.tolerance = 1024 * epsilon<T>() * size / min(T(1), h);
+    const T radius = (1 + max_norm<T, n>(v.w)) / 4;
+    NewtonOptions options;
+    options.max_iterations = 30;
+    for (int j = 0; j < 2 * n; ++j)
+      for (int sign : {-1, 1}) {
+        Vector<T, 2 * n> start = blown_up_identity(v);
+        start[j] += sign * radius;
+        ++probe.starts;
+        try {
+          auto step = tq_step_from(context.system, *context.tq, *context.tq, v, h, start, options);
+          if (!step.report.converged) continue;
+          ++probe.converged;
+          probe.largest_distance = max(probe.largest_distance, state_distance(step.next, next));
+        } catch (const std::domain_error&) {  // a start outside the Lagrangian's domain
+        } catch (const SingularLagrangianError&) {
+        }
+      }
+    return probe;
+  }
+
   template <LagrangianSystem System>
   static ClaimResult evaluate(const CaseContext<System>& context) {
     using T = typename System::Scalar;
     constexpr int n = System::dimension;
     ClaimResult claim = claim_result_for(id, source, prediction);
     const OrderPrediction predicted = context.predict(id, 1);
-    // F_h(v) − v over the sweep: order at least 1.
-    // Here a failed solve is the measured outcome, not bad input.
+    // F_h(v) − v over the sweep: order at least 1; at each h the critical point is unique near
+    // the diagonal. Here a failed solve is the measured outcome, not bad input.
     std::vector<T> displacement;
-    std::string failure;
+    std::string failure, second_point;
+    nlohmann::json uniqueness = nlohmann::json::array();
     for (const T& h : context.steps()) {
+      context.report("existence-uniqueness: F_h(v) and its uniqueness at h = " + to_decimal<T>(h));
       auto step = tq_step(context.system, *context.tq, context.initial, h);
       if (!step.report.converged && failure.empty())
         failure = "no critical point found from the h = 0 solution at h = " + to_decimal<T>(h) +
                   ": " + step.report.failure;
       displacement.push_back(state_distance(step.next, context.initial));
+      if (!step.report.converged) continue;
+      auto probe = probe_uniqueness(context, step.next, h);
+      const bool unique = probe.largest_distance <= probe.tolerance;
+      if (!unique && second_point.empty())
+        second_point = "a second critical point near the diagonal at h = " + to_decimal<T>(h) + ": " +
+                       format_scalar(probe.largest_distance) + " from F_h(v) (rounding " +
+                       format_scalar(probe.tolerance) + ")";
+      uniqueness.push_back({{"h", to_decimal<T>(h)},
+                            {"starts", probe.starts},
+                            {"converged", probe.converged},
+                            {"largest_distance_to_F_h", to_decimal<T>(probe.largest_distance)},
+                            {"rounding", to_decimal<T>(probe.tolerance)},
+                            {"unique", unique}});
     }
+    claim.evidence["uniqueness_by_h"] = uniqueness;
+    claim.evidence["uniqueness_search"] =
+        "Newton (<= 30 iterations) from (w, w) ± (1 + |w|)/4 along each blown-up unknown (z, w~); "
+        "every start that converges must land on F_h(v)";
     claim.series.push_back(make_series("|F_h(v) − v|", context.steps(), displacement, context.floor(),
                                        predicted.order, predicted.exact, context.order_tolerance));
-    // h_max against the speed |w|.
+    // h_max against the speed |w|: Theorem 4.2 is semi-global, h_max(v) > 0 however fast v is;
+    // h_max·|w| says how it falls.
     using std::ldexp;
     nlohmann::json map = nlohmann::json::array();
-    bool all_positive = true;
+    std::optional<T> zero_at;
     State<T, n> v = context.initial;
     if (max_norm<T, n>(v.w) == 0) v.w.setConstant(T(1));
     for (int level = 0; level < speed_levels; ++level) {
-      context.report("existence-uniqueness: h_max at |w| = " + to_decimal<T>(max_norm<T, n>(v.w)));
+      const T speed = max_norm<T, n>(v.w);
+      context.report("existence-uniqueness: h_max at |w| = " + to_decimal<T>(speed));
       T largest = h_max(context, v);
-      all_positive = all_positive && largest > 0;
-      map.push_back({{"speed", to_decimal<T>(max_norm<T, n>(v.w))},
+      if (!(largest > 0) && !zero_at) zero_at = speed;
+      map.push_back({{"speed", to_decimal<T>(speed)},
                      {"h_max", to_decimal<T>(largest)},
+                     {"h_max_times_speed", to_decimal<T>(T(largest * speed))},
                      {"at_search_ceiling", largest == ldexp(context.final_time, doublings)}});
       v.w *= 2;
     }
@@ -249,9 +328,17 @@ struct ExistenceUniquenessClaim {
     if (!failure.empty()) {
       series.holds = false;
       series.explanation = failure;
-    } else if (!all_positive) {
+    } else if (!second_point.empty()) {
       series.holds = false;
-      series.explanation = "no step h > 0 works for some speed (h_max = 0): see h_max_by_speed";
+      series.explanation = second_point;
+    } else if (zero_at) {
+      series.holds = false;
+      series.explanation = "no step h > 0 works at speed |w| = " + format_scalar(*zero_at, 4) +
+                           " (h_max = 0): the semi-global statement needs L regular on all of TQ; "
+                           "see h_max_by_speed";
+    } else if (series.holds && *series.holds) {
+      series.explanation += "; the critical point is unique near the diagonal at every h, and h_max > 0 "
+                            "at every speed";
     }
     conclude(claim);
     return claim;
