@@ -17,6 +17,7 @@
 #include "core/tq_evolution.hpp"
 #include "references/gauss_legendre.hpp"
 #include "harness/claim_result.hpp"
+#include "harness/order_fit.hpp"
 #include "references/reference_flow.hpp"
 #include "references/taylor_reference.hpp"
 
@@ -214,6 +215,7 @@ struct CaseContext {
   std::optional<TQDiscretization<T>> tq_compare;  // contact-order's second discretization
   std::optional<TQDiscretization<T>> tq_past;     // past-future-symmetry: a mismatched past segment
   double order_tolerance;
+  FitOptions fit_options;  // --refine tightens the asymptotic range (harness/run_case.cpp)
   std::function<void(const std::string&)> progress;
 
   CaseContext(const CaseSpec& spec_, System system_, std::function<void(const std::string&)> progress_)

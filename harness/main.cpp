@@ -1,6 +1,6 @@
 // vivv: the command-line tool (DESIGN §3).
 //
-//   vivv run [CASE.json ...] [--out DIR] [--digits D] [--jobs J] [--progress]
+//   vivv run [CASE.json ...] [--out DIR] [--digits D] [--jobs J] [--refine] [--progress]
 //   vivv report REPORT.json [MORE.json ...] --out DIR   (merge and re-render)
 //   vivv list
 //
@@ -48,6 +48,7 @@ struct RunOptions {
   std::optional<int> digits;
   int jobs = 1;
   bool progress = isatty(STDERR_FILENO);
+  bool refine = false;
 };
 
 std::string default_suite_directory() { return std::string(VIVV_SOURCE_DIR) + "/cases/suite"; }
@@ -97,6 +98,7 @@ RunOptions parse_run_options(const std::vector<std::string>& args) {
     else if (arg == "--jobs") options.jobs = parse_integer(arg, value(), 1, 64);
     else if (arg == "--progress") options.progress = true;
     else if (arg == "--quiet") options.progress = false;
+    else if (arg == "--refine") options.refine = true;
     else if (arg.rfind("--", 0) == 0) throw BadInput("unknown option '" + arg + "'");
     else options.case_files.push_back(arg);
   }
@@ -117,7 +119,7 @@ std::function<void(const std::string&)> progress_printer(bool enabled) {
 // Runs one case; solver failures and non-regular Lagrangians are bad input.
 nlohmann::json run_one(const CaseSpec& spec, const RunOptions& options) {
   try {
-    return case_json(run_case(spec, options.digits, progress_printer(options.progress)));
+    return case_json(run_case(spec, options.digits, options.refine, progress_printer(options.progress)));
   } catch (const CaseError&) {
     throw;  // names the file and the field already
   } catch (const SolverError& error) {
@@ -258,7 +260,7 @@ int command_list() {
 }
 
 int usage(std::ostream& out, int code) {
-  out << "usage: vivv run [CASE.json ...] [--out DIR] [--digits D] [--jobs J] [--progress|--quiet]\n"
+  out << "usage: vivv run [CASE.json ...] [--out DIR] [--digits D] [--jobs J] [--refine] [--progress|--quiet]\n"
          "       vivv report REPORT.json [MORE.json ...] --out DIR\n"
          "       vivv list\n";
   return code;

@@ -128,10 +128,20 @@ void drop_pre_asymptotic(std::vector<LogPoint>& kept, std::vector<DroppedPoint>&
     const std::vector<double> orders = pairwise_orders_of(kept);
     const double first = orders.front();
     const double rest = median_of_finite(std::vector<double>(orders.begin() + 1, orders.end()));
-    if (!(std::fabs(first - rest) > options.asymptotic_tolerance)) return;
+    if (!(std::fabs(first - rest) > options.asymptotic_tolerance)) break;
     dropped.emplace_back(kept.front().index, "pre-asymptotic (pairwise order " +
                                                  format_number(first) + " vs " +
                                                  format_number(rest) + " on the rest)");
+    kept.erase(kept.begin());
+  }
+  if (!(options.asymptote_tolerance > 0)) return;
+  while (kept.size() > keep_at_least) {
+    const std::vector<double> orders = pairwise_orders_of(kept);
+    const double first = orders.front(), finest = orders.back();
+    if (!(std::fabs(first - finest) > options.asymptote_tolerance)) return;
+    dropped.emplace_back(kept.front().index, "pre-asymptotic in the refined sweep (pairwise order " +
+                                                 format_number(first) + " vs " + format_number(finest) +
+                                                 " at the finest h)");
     kept.erase(kept.begin());
   }
 }

@@ -41,6 +41,10 @@ struct FitOptions {
   double confidence = 0.95;
   // The verdict also looks at this many pairwise orders at the small-h end of the fit.
   int finest_orders = 2;
+  // A refined sweep (--refine) reaches the asymptotic regime, and its finest pairwise order says
+  // where that is: leading points whose pairwise order differs from it by more than this are
+  // pre-asymptotic too. 0 turns the rule off.
+  double asymptote_tolerance = 0;
 };
 
 // A point left out of the fit: its index into the caller's arrays and why.
@@ -110,7 +114,8 @@ void drop_plateau(std::vector<LogPoint>& kept, std::vector<DroppedPoint>& droppe
                   std::vector<std::string>& notes, const FitOptions& options);
 
 // Drops leading points of `kept` (decreasing h) while |p_first − median p_rest| >
-// asymptotic_tolerance, as "pre-asymptotic (...)".
+// asymptotic_tolerance, then (when asymptote_tolerance > 0) while |p_first − p_finest| >
+// asymptote_tolerance, as "pre-asymptotic (...)".
 void drop_pre_asymptotic(std::vector<LogPoint>& kept, std::vector<DroppedPoint>& dropped,
                          const FitOptions& options);
 

@@ -16,13 +16,14 @@ namespace vivv {
 // (a lower bound unless `exact`) with `tolerance` on the order.
 template <class T>
 Series make_series(const std::string& label, const std::vector<T>& h, const std::vector<T>& error,
-                   const T& floor, std::optional<double> predicted, bool exact, double tolerance) {
+                   const T& floor, std::optional<double> predicted, bool exact, double tolerance,
+                   const FitOptions& options = {}) {
   Series series;
   series.label = label;
   for (const auto& x : h) series.h.push_back(to_decimal<T>(x));
   for (const auto& e : error) series.error.push_back(to_decimal<T>(e));
   series.floor = to_decimal<T>(floor);
-  series.fit = fit_order(h, error, floor);
+  series.fit = fit_order(h, error, floor, options);
   series.predicted_order = predicted;
   series.exact_order = exact;
   bool all_at_floor = std::all_of(error.begin(), error.end(), [&](const T& e) { return e <= floor; });

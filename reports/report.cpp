@@ -87,6 +87,14 @@ nlohmann::json case_json(const CaseResult& result) {
           {"T", spec.final_time},
           {"steps", spec.steps},
           {"order_tolerance", spec.order_tolerance},
+          {"sweep",
+           {{"refine", result.sweep.refine},
+            {"requested_steps", result.sweep.requested_steps},
+            {"steps_used", spec.steps},
+            {"stopped", result.sweep.stopped},
+            {"budget", result.sweep.refine ? "at most " + std::to_string(SweepRecord::max_refinements) +
+                                                  " halvings of h, N <= " + std::to_string(SweepRecord::max_steps)
+                                            : ""}}},
           {"labels", spec.labels},
           {"precision",
            {{"scalar", result.scalar},
@@ -285,6 +293,16 @@ void print_claims_table(std::ostream& out, const nlohmann::json& report) {
     std::string text = line.str();
     text.erase(text.find_last_not_of(' ') + 1);
     out << text << "\n";
+  }
+  for (const auto& c : report["cases"]) {
+    const nlohmann::json sweep = c.value("sweep", nlohmann::json::object());
+    if (!sweep.value("refine", false)) continue;
+    auto range = [](const nlohmann::json& steps) {
+      return steps.empty() ? std::string("-")
+                           : std::to_string(steps.front().get<int>()) + " … " + std::to_string(steps.back().get<int>());
+    };
+    out << "sweep of " << c["name"].get<std::string>() << ": N = " << range(sweep["steps_used"]) << " (requested "
+        << range(sweep["requested_steps"]) << "); stopped: " << sweep.value("stopped", std::string()) << "\n";
   }
   out << "claims: " << summary_text(report["summary"]) << "\n";
 }

@@ -54,7 +54,7 @@ struct ExactDiscretizationClaim {
     claim.evidence["tolerance_rule"] = std::to_string(tolerance_factor) +
                                        " × reference tolerance × max(1, |F_h(v)|)";
     Series series = make_series<T>("|F_h(v) − F^exact_h(v)| (exact discretization)", context.steps(),
-                                   gaps, context.floor(), std::nullopt, false, context.order_tolerance);
+                                   gaps, context.floor(), std::nullopt, false, context.order_tolerance, context.fit_options);
     series.holds = all_hold;
     series.explanation = all_hold ? "equal to the flow at every h, to the reference tolerance"
                                   : "the exact discretization's evolution is not the flow (see per-step evidence)";

@@ -71,11 +71,11 @@ struct GlobalOrderClaim {
       p_error.push_back(max_norm<T, n>(run.p_final[i] - p_exact));
     }
     claim.series.push_back(make_series("|q_N − q(T)|", context.steps(), q_error, context.floor(),
-                                       predicted.order, predicted.exact, context.order_tolerance));
+                                       predicted.order, predicted.exact, context.order_tolerance, context.fit_options));
     claim.series.push_back(make_series(context.tq ? "|FL(v_N) − p(T)|" : "|p_end(q_{N−1}, q_N) − p(T)|",
                                        context.steps(), p_error,
                                        context.floor(), std::nullopt, false,
-                                       context.order_tolerance));
+                                       context.order_tolerance, context.fit_options));
     conclude(claim);
     return claim;
   }

@@ -61,7 +61,7 @@ struct LagrangianOrderClaim {
         "Gauss-Legendre, " + std::to_string(nodes) + " nodes per Taylor step";
     claim.evidence["shooting_velocity_mismatch"] = to_decimal<T>(velocity_mismatch);
     claim.series.push_back(make_series("|L_d − L_d^E|", context.steps(), error, context.floor(),
-                                       predicted.order, predicted.exact, context.order_tolerance));
+                                       predicted.order, predicted.exact, context.order_tolerance, context.fit_options));
     conclude(claim);
     return claim;
   }
@@ -100,13 +100,13 @@ struct LegendreOrderClaim {
     }
     // The order is exact: observing r + 1 would confirm Marsden–West and refute the paper.
     claim.series.push_back(make_series("|p_end(q(0), q(h)) − p(h)|", context.steps(), end_error,
-                                       context.floor(), predicted, true, context.order_tolerance));
+                                       context.floor(), predicted, true, context.order_tolerance, context.fit_options));
     claim.series.push_back(make_series("|p_begin(q(0), q(h)) − p(0)|", context.steps(),
                                        begin_error, context.floor(), predicted, true,
-                                       context.order_tolerance));
+                                       context.order_tolerance, context.fit_options));
     claim.series.push_back(make_series("|(p_end − p(h)) − (p_begin − p(0))|", context.steps(),
                                        difference, context.floor(), predicted + 1, false,
-                                       context.order_tolerance));
+                                       context.order_tolerance, context.fit_options));
     conclude(claim);
     return claim;
   }

@@ -70,9 +70,9 @@ struct PastFutureSymmetryClaim {
     // The symmetric residual is the claim's main measurement; the graph difference beside it.
     claim.series.push_back(make_series("|Δw − Δw̃| (symmetric residual)", context.steps(), asymmetry,
                                        context.floor(), predicted.order + 1, predicted.exact,
-                                       context.order_tolerance));
+                                       context.order_tolerance, context.fit_options));
     claim.series.push_back(make_series("max(|Δw|, |Δw̃|)", context.steps(), difference, context.floor(),
-                                       predicted.order, predicted.exact, context.order_tolerance));
+                                       predicted.order, predicted.exact, context.order_tolerance, context.fit_options));
     conclude(claim);
     return claim;
   }

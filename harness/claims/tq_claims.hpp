@@ -54,7 +54,7 @@ struct LocalOrderClaim {
     claim.evidence["evolution_order_r"] = context.map_order();
     claim.series.push_back(make_series("|F_h(v) − F^exact_h(v)|", context.steps(), error,
                                        context.floor(), predicted.order, predicted.exact,
-                                       context.order_tolerance));
+                                       context.order_tolerance, context.fit_options));
     conclude(claim);
     return claim;
   }
@@ -99,7 +99,7 @@ struct ContactOrderClaim {
     claim.evidence["orders_against_exact"] = {nominal_order(*context.tq), nominal_order(*context.tq_compare)};
     claim.series.push_back(make_series("|F²_h(v) − F¹_h(v)|", context.steps(), difference,
                                        context.floor(), predicted.order, predicted.exact,
-                                       context.order_tolerance));
+                                       context.order_tolerance, context.fit_options));
     conclude(claim);
     return claim;
   }
@@ -165,7 +165,7 @@ struct QxQTQEquivalenceClaim {
     claim.evidence["per_step"] = rows;
     claim.evidence["mismatched_tq_steps"] = context.tq_past.has_value();
     Series series = make_series<T>("max_k |Psi(v_k) − (q_k, q_{k+1})|", context.steps(), gaps,
-                                   context.floor(), std::nullopt, false, context.order_tolerance);
+                                   context.floor(), std::nullopt, false, context.order_tolerance, context.fit_options);
     series.holds = all_hold;
     series.explanation = all_hold ? "equal to working precision at every h"
                                   : "the TQ and Q×Q evolutions differ (see per-step evidence)";
@@ -299,7 +299,7 @@ struct ExistenceUniquenessClaim {
         "Newton (<= 30 iterations) from (w, w) ± (1 + |w|)/4 along each blown-up unknown (z, w~); "
         "every start that converges must land on F_h(v)";
     claim.series.push_back(make_series("|F_h(v) − v|", context.steps(), displacement, context.floor(),
-                                       predicted.order, predicted.exact, context.order_tolerance));
+                                       predicted.order, predicted.exact, context.order_tolerance, context.fit_options));
     // h_max against the speed |w|: Theorem 4.2 is semi-global, h_max(v) > 0 however fast v is;
     // h_max·|w| says how it falls.
     using std::ldexp;

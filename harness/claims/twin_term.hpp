@@ -80,7 +80,7 @@ struct TwinTermInvarianceClaim {
     claim.evidence["formalism"] = context.tq ? "tq" : "qxq";
     Series series = make_series<T>(context.tq ? "max_k |v_k(a) − v_k(0)|" : "max_k |q_k(a) − q_k(0)|",
                                    context.steps(), trajectory_gap, context.floor(), std::nullopt, false,
-                                   context.order_tolerance);
+                                   context.order_tolerance, context.fit_options);
     series.holds = all_hold;
     series.explanation = all_hold ? "trajectories identical to working precision at every h"
                                   : "the twin term changed the trajectory (see per-step evidence)";
@@ -243,13 +243,13 @@ struct MismatchedLegendreClaim {
       const OrderPrediction predicted = context.predict(id, order);
       claim.series.push_back(make_series("|q_N − q(T)| (original equation)", context.steps(), error,
                                          context.floor(), predicted.order, predicted.exact,
-                                         context.order_tolerance));
+                                         context.order_tolerance, context.fit_options));
       conclude(claim);
       return claim;
     }
     // Inconsistent: the error against the original solution must not vanish…
     Series original = make_series("|q_N − q(T)| (original equation)", context.steps(), error,
-                                  context.floor(), std::nullopt, false, context.order_tolerance);
+                                  context.floor(), std::nullopt, false, context.order_tolerance, context.fit_options);
     bool stalls = original.fit && original.fit->ok && original.fit->order < 0.5;
     original.holds = stalls;
     original.explanation = stalls ? "the error does not vanish as h → 0 (fitted order " +
@@ -283,7 +283,7 @@ struct MismatchedLegendreClaim {
     claim.series.insert(claim.series.begin(),
                         make_series("|q_N − q_mod(T)| (modified equation)", context.steps(),
                                     modified_error, context.floor(), 1.0, false,
-                                    context.order_tolerance));
+                                    context.order_tolerance, context.fit_options));
     conclude(claim);
     return claim;
   }

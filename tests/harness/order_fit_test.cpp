@@ -476,6 +476,24 @@ TYPED_TEST(OrderFitTest, VerdictPassesAnOrderTwoSweepWithAPreAsymptoticStart) {
   EXPECT_TRUE(contains(exact.explanation, "interval excludes the predicted 2")) << exact.explanation;
 }
 
+// A refined sweep: e = h²(1 + h), pairwise orders 2 + O(h) all within the median rule's 0.25,
+// so without asymptote_tolerance every point stays; with 0.05 the leading points more than
+// 0.05 from the finest pairwise order are dropped as pre-asymptotic and the fit moves toward 2.
+TYPED_TEST(OrderFitTest, RefinedSweepDropsLeadingPointsFarFromTheFinestOrder) {
+  using T = TypeParam;
+  const std::vector<T> h = geometric_steps<T>("0.5", "2", 9);
+  const std::vector<T> error = power_law(h, T(1), T(2), T(1));
+  const OrderFit plain = fit_order(h, error, T(0));
+  FitOptions refined_options;
+  refined_options.asymptote_tolerance = 0.05;
+  const OrderFit refined = fit_order(h, error, T(0), refined_options);
+  ASSERT_TRUE(plain.ok && refined.ok);
+  EXPECT_TRUE(plain.dropped.empty());
+  EXPECT_FALSE(refined.dropped.empty());
+  EXPECT_TRUE(contains(refined.dropped.front().second, "pre-asymptotic in the refined sweep"));
+  EXPECT_LT(std::fabs(refined.order - 2), std::fabs(plain.order - 2));
+}
+
 // ---------------------------------------------------------------- MPFR beyond long double
 
 TEST(OrderFitMpfr, ErrorsBelowTheRangeOfLongDoubleStillFit) {
