@@ -57,6 +57,54 @@ TYPED_TEST(DiscreteLagrangianTest, PaperLegendreComparisonDetectsASignSlip) {
   EXPECT_GT(abs(T(legendre.p_begin[0] - wrong)), this->working_tolerance() * 16);
 }
 
+// Identities between rules, which order claims cannot see (a swapped weight β ↔ 1 − β keeps
+// every order): weighted β = 0 is the left rectangle, β = 1 the right one, β = 1/2 the
+// trapezoid; alpha α = 0 is the left rectangle, α = 1/2 the midpoint, α = 1 the right
+// rectangle. L_d, p_begin and p_end agree to working precision at random points; the
+// swapped pairs (β = 0 against the right rectangle) do not.
+TYPED_TEST(DiscreteLagrangianTest, RulesWithSpecialParametersAreTheNamedRules) {
+  using T = TypeParam;
+  using std::abs;
+  auto rule = [](QxQRule r, const T& parameter = T(1) / 2) {
+    QxQDiscretization<T> d;
+    d.rule = r;
+    d.parameter = parameter;
+    return d;
+  };
+  struct Identity {
+    QxQDiscretization<T> general, named;
+    bool equal;
+  };
+  const std::vector<Identity> identities = {
+      {rule(QxQRule::weighted, T(0)), rule(QxQRule::left_rectangle), true},
+      {rule(QxQRule::weighted, T(1)), rule(QxQRule::right_rectangle), true},
+      {rule(QxQRule::weighted, T(1) / 2), rule(QxQRule::trapezoid), true},
+      {rule(QxQRule::alpha, T(0)), rule(QxQRule::left_rectangle), true},
+      {rule(QxQRule::alpha, T(1) / 2), rule(QxQRule::midpoint), true},
+      {rule(QxQRule::alpha, T(1)), rule(QxQRule::right_rectangle), true},
+      {rule(QxQRule::weighted, T(0)), rule(QxQRule::right_rectangle), false},  // β ↔ 1 − β
+      {rule(QxQRule::alpha, T(0)), rule(QxQRule::right_rectangle), false},     // α ↔ 1 − α
+  };
+  PaperExample<T> system;
+  std::mt19937 random(5);
+  for (std::size_t i = 0; i < identities.size(); ++i) {
+    T largest = 0;
+    for (int trial = 0; trial < 10; ++trial) {
+      T h = this->uniform(random, 1, 2) / 8;
+      Vector<T, 1> q_b(this->uniform(random, -2, 2)), q_e(q_b[0] + h * this->uniform(random, -2, 2));
+      auto one = discrete_legendre(system, identities[i].general, q_b, q_e, h);
+      auto two = discrete_legendre(system, identities[i].named, q_b, q_e, h);
+      using std::max;
+      largest = max({largest, T(abs(T(one.value - two.value))), T(abs(T(one.p_begin[0] - two.p_begin[0]))),
+                     T(abs(T(one.p_end[0] - two.p_end[0])))});
+    }
+    if (identities[i].equal)
+      EXPECT_LE(largest, this->working_tolerance() * 16) << "identity " << i;
+    else
+      EXPECT_GT(largest, T(1) / 1000) << "swapped pair " << i;
+  }
+}
+
 // The twin term shifts both Legendre transforms by exactly a·h^s (paper §2.3).
 TYPED_TEST(DiscreteLagrangianTest, TwinTermShiftsBothTransformsByAHToTheS) {
   using T = TypeParam;

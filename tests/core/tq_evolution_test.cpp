@@ -38,6 +38,32 @@ class TQEvolutionTest : public testing::ScalarTest<T> {
 };
 TYPED_TEST_SUITE(TQEvolutionTest, testing::Scalars, testing::ScalarNames);
 
+// θ = 0 puts the segment on [0, h]: d−(v) = psi(h, 0, v) = q for every curve family; θ = 1 puts
+// it on [−h, 0]: d+(v) = q. At θ = 1/2 neither boundary point is q (the negative control: a
+// swapped θ ↔ 1 − θ is seen).
+TYPED_TEST(TQEvolutionTest, ThetaZeroStartsTheSegmentAtTheBasePoint) {
+  using T = TypeParam;
+  using std::abs;
+  Pendulum<T> system;
+  TangentPoint<T, 1> v{{T(7) / 10}, {T(-1) / 3}};
+  const T h = T(1) / 4;
+  for (auto [psi, r] : {std::pair{CurveFamily::linear, 1}, std::pair{CurveFamily::taylor, 3}}) {
+    auto at_zero = this->quadrature(system, psi, T(0), 2, r);
+    auto at_one = this->quadrature(system, psi, T(1), 2, r);
+    auto at_half = this->quadrature(system, psi, T(1) / 2, 2, r);
+    EXPECT_LE(abs(T(d_minus<T, 1>(at_zero, v, h)[0] - v.q[0])), this->working_tolerance());
+    EXPECT_LE(abs(T(d_plus<T, 1>(at_one, v, h)[0] - v.q[0])), this->working_tolerance());
+    EXPECT_GT(abs(T(d_minus<T, 1>(at_half, v, h)[0] - v.q[0])), h / 100);
+    EXPECT_GT(abs(T(d_plus<T, 1>(at_half, v, h)[0] - v.q[0])), h / 100);
+    // And the other end lies h along the curve: d+ at θ = 0 is d− at θ = 1 shifted by the
+    // whole interval, so for the linear curve d+(θ = 0) − d−(θ = 1) = 2 h w.
+    if (psi == CurveFamily::linear) {
+      EXPECT_LE(abs(T(d_plus<T, 1>(at_zero, v, h)[0] - d_minus<T, 1>(at_one, v, h)[0] - 2 * h * v.w[0])),
+                this->working_tolerance());
+    }
+  }
+}
+
 // Paper §2.4: in TQ form (linear psi, θ = 0, L_h(q, v) = h L(q, v) + a h² v) the
 // TQ Legendre transforms are the printed F±L_h at q− = q, q+ = q + h v.
 TYPED_TEST(TQEvolutionTest, PaperExampleTQLegendreTransformsAreThePrintedOnes) {

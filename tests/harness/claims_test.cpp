@@ -199,6 +199,23 @@ TYPED_TEST(ClaimsTest, QxQTQEquivalenceHoldsForPullbacksAndRejectsAnotherLagrang
             "fail");
 }
 
+// Lemma 6.1 for every Q×Q rule: its pullback's TQ evolution is its DEL, conjugated by Psi.
+TYPED_TEST(ClaimsTest, QxQTQEquivalenceHoldsForThePullbackOfEveryRule) {
+  for (const auto& name : rule_names()) {
+    nlohmann::json qxq = {{"kind", name}};
+    if (name == "alpha") qxq["alpha"] = "0.3";
+    if (name == "weighted") qxq["beta"] = "0.6";
+    for (const char* theta : {"0", "1/2"}) {
+      nlohmann::json d = {{"formalism", "tq"}, {"psi", "linear"}, {"theta", theta}, {"lagrangian", "pullback"},
+                          {"qxq", qxq}};
+      EXPECT_EQ(this->verdict("qxq-tq-equivalence", {{"system", paper}, {"discretization", d}, {"steps", {8, 16, 32}}})
+                    .substr(0, 4),
+                "pass")
+          << name << " at theta " << theta;
+    }
+  }
+}
+
 TYPED_TEST(ClaimsTest, ExistenceUniquenessHasPositiveStepsAtEverySpeed) {
   using T = TypeParam;
   nlohmann::json json = {{"system", paper}, {"discretization", tq_midpoint_quadrature}};
