@@ -36,6 +36,10 @@ struct ExactDiscretizationClaim {
     std::vector<T> gaps;
     bool all_hold = true;
     nlohmann::json rows = nlohmann::json::array();
+    // Erratum: Lemma 5.2 as printed sets ṽ = F_{α+(h)}(v); the constraint F_{α+}(v) = F_{α−}(ṽ)
+    // gives ṽ = F_{α+ − α−}(v) = F_h(v). The two differ unless θ = 0: measure both.
+    const T theta = context.tq->theta;
+    nlohmann::json printed = nlohmann::json::array();
     for (const T& h : context.steps()) {
       context.report("exact-discretization at h = " + to_decimal<T>(h));
       State<T, n> exact = context.exact(h);
@@ -49,7 +53,16 @@ struct ExactDiscretizationClaim {
                       {"difference", to_decimal<T>(gap)},
                       {"tolerance", to_decimal<T>(tolerance)},
                       {"holds", holds}});
+      if (theta != 0)
+        printed.push_back({{"h", to_decimal<T>(h)},
+                           {"distance_to_F_alpha_plus", to_decimal<T>(state_distance(
+                                tq_map(context, *context.tq, h), context.exact(T((1 - theta) * h))))}});
     }
+    if (theta != 0)
+      claim.evidence["erratum_lemma_5_2"] = {
+          {"printed", "v~ = F_{alpha+(h)}(v)"},
+          {"confirmed", "v~ = F_h(v): see per_step"},
+          {"distance_of_the_evolution_to_F_alpha_plus", printed}};
     claim.evidence["per_step"] = rows;
     claim.evidence["tolerance_rule"] = std::to_string(tolerance_factor) +
                                        " × reference tolerance × max(1, |F_h(v)|)";
