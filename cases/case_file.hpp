@@ -34,7 +34,7 @@ struct TwinSpec {
 
 struct DiscretizationSpec;
 
-// A discretization of TQ (DESIGN §1.3): {"formalism": "tq", "psi": "linear",
+// A discretization of TQ (docs/theory.md (TQ)): {"formalism": "tq", "psi": "linear",
 // "theta": "1/2", "lagrangian": "quadrature", "nodes": 4} or
 // {"formalism": "tq", "psi": "linear", "theta": "0", "lagrangian": "pullback",
 //  "qxq": {"kind": "midpoint"}} or {"formalism": "tq", "psi": "taylor", "r": 2, ...},

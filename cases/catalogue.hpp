@@ -23,7 +23,7 @@ template <class T>
 using CatalogueSystems = std::tuple<PaperExample<T>, HarmonicOscillator<T>, Pendulum<T>,
                                     RelativisticParticle<T>, ChargedParticle<T>>;
 
-// Claim ids a case may ask for (DESIGN §1.5); harness/claims.hpp implements each.
+// Claim ids a case may ask for (docs/claims.md); harness/claims.hpp implements each.
 inline const std::vector<std::string>& claim_ids() {
   static const std::vector<std::string> ids = {
       "global-order",       "lagrangian-order",    "legendre-order", "twin-term-invariance",

@@ -1,4 +1,4 @@
-// The catalogue of Lagrangian systems (DESIGN §1.1, foundation issue).
+// The catalogue of Lagrangian systems (docs/theory.md, foundation issue).
 //
 // Each system states L(q, w) once, templated on the scalar S it is evaluated
 // in (T itself or a jet over T); parameters live in T. `parameters` lists the

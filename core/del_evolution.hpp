@@ -1,4 +1,4 @@
-// The discrete Euler–Lagrange (DEL) evolution on Q×Q (DESIGN §1.2, paper eq. 2.5).
+// The discrete Euler–Lagrange (DEL) evolution on Q×Q (docs/theory.md (Q × Q), paper eq. 2.5).
 //
 // (q_{k−1}, q_k) ↦ (q_k, q_{k+1}) solves
 //   p_begin[L_d](q_k, q_{k+1}) = p_end[L~_d](q_{k−1}, q_k)

@@ -1,4 +1,4 @@
-// Q×Q discrete Lagrangians L_d(q_b, q_e; h) and their Legendre transforms (DESIGN §1.2).
+// Q×Q discrete Lagrangians L_d(q_b, q_e; h) and their Legendre transforms (docs/theory.md (Q × Q)).
 //
 // Arguments are named (begin, end); the paper writes L_h(q+, q−) with the
 // later point first. Δ = q_e − q_b. The whole contract of a discrete

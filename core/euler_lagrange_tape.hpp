@@ -1,7 +1,7 @@
 // The Euler–Lagrange acceleration of a Lagrangian system as a tape (issue 3).
 //
 // euler_lagrange_tape records, once, the expression
-//   a(q, w) = M⁻¹ (dL/dq − (d²L/dw dq) w),   M = d²L/dw²     (DESIGN §1.1)
+//   a(q, w) = M⁻¹ (dL/dq − (d²L/dw dq) w),   M = d²L/dw²     (docs/theory.md)
 // by evaluating the system's own generic L with S = Jet<TapeScalar<T>, 2n>
 // (so dL/dq, M and d²L/dw dq are recorded too) and solving M a = rhs by
 // Gaussian elimination on the tape. No per-system series: any catalogue L

@@ -1,5 +1,5 @@
 // The exact curve segment psi(h, t, v) = q(t) of the Euler–Lagrange solution
-// through v (DESIGN §1.3, paper Definition 5.1), in any scalar S.
+// through v (docs/theory.md (TQ), paper Definition 5.1), in any scalar S.
 //
 // The solution of x'' = a(x, x') through (x_0, v_0) is covered, on a time
 // interval [t_begin, t_end] around 0, by Taylor pieces: on each piece

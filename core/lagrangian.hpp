@@ -1,4 +1,4 @@
-// The Lagrangian concept and what core/ derives from it (DESIGN §1.1).
+// The Lagrangian concept and what core/ derives from it (docs/theory.md).
 //
 // A system supplies L(q, w) once, templated on the scalar S, plus its
 // configuration dimension n. Everything else — momentum, Euler–Lagrange
@@ -88,7 +88,7 @@ auto energy(const System& system, const Vector<typename System::Scalar, System::
   return typename System::Scalar(d.dL_dw.dot(w) - d.value);
 }
 
-// Euler–Lagrange acceleration q'' = M⁻¹ (dL/dq − (d²L/dw dq) w), DESIGN §1.1.
+// Euler–Lagrange acceleration q'' = M⁻¹ (dL/dq − (d²L/dw dq) w), docs/theory.md.
 // A singular (or numerically singular) mass matrix is an error naming the state.
 template <LagrangianSystem System>
 auto euler_lagrange_acceleration(const System& system,

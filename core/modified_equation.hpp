@@ -1,4 +1,4 @@
-// The modified Lagrangian that a mismatched DEL with twin terms solves (DESIGN §1.4).
+// The modified Lagrangian that a mismatched DEL with twin terms solves (docs/theory.md (twin terms)).
 //
 // With twin terms a·h·(q_e − q_b) on L_d and ã·h·(q_e − q_b) on L~_d, the
 // mismatched DEL p_begin[L_d](q_k, q_{k+1}) = p_end[L~_d](q_{k−1}, q_k) is a

@@ -1,4 +1,4 @@
-// Newton's method on Eigen matrices, reporting what happened (DESIGN §2).
+// Newton's method on Eigen matrices, reporting what happened (README (layout)).
 //
 // Solvers return whether they converged, in how many iterations and with what
 // residual; callers that cannot use an unconverged iterate call

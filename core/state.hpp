@@ -1,4 +1,4 @@
-// A point v = (q, w) of TQ = R^n × R^n: configuration and velocity (DESIGN §1.1).
+// A point v = (q, w) of TQ = R^n × R^n: configuration and velocity (docs/theory.md).
 #pragma once
 
 #include "core/scalar.hpp"

@@ -1,5 +1,5 @@
 // Taylor coefficients of the Euler–Lagrange solution in any scalar S (the
-// taylor-r curve segments of DESIGN §1.3).
+// taylor-r curve segments of docs/theory.md (TQ)).
 //
 // For x'' = a(x, x') in R^m with a recorded on a Tape (core/euler_lagrange_tape.hpp
 // records it from the system's generic L), the solution through (x_0, v_0) has

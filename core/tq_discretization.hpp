@@ -1,5 +1,5 @@
 // Discretizations of TQ (psi, alpha+, alpha−) and of the Lagrangian system on
-// them (DESIGN §1.3; paper Definitions 4.1, 4.3).
+// them (docs/theory.md (TQ); paper Definitions 4.1, 4.3).
 //
 // A curve segment psi(h, t, v) passes through v = (q, w) at t = 0; the
 // boundary maps are d−(v) = psi(h, α−, v) and d+(v) = psi(h, α+, v) with
@@ -253,7 +253,7 @@ S blown_up_lagrangian(const System& system, const TQDiscretization<typename Syst
   return blown_up_lagrangian(system, d, CurveSegment<S, System::dimension>(d, v, h), h);
 }
 
-// The TQ discrete Legendre transforms at v (DESIGN §1.3), with N∓ = [−A⁻¹B; I]
+// The TQ discrete Legendre transforms at v (docs/theory.md (TQ)), with N∓ = [−A⁻¹B; I]
 // spanning ker Dd∓ (A = ∂d∓/∂q, B = ∂d∓/∂w):
 //   ((Dd+ N−)/h)ᵀ P+ =  N−ᵀ ∇L̂_h(v),
 //   ((Dd− N+)/h)ᵀ P− = −N+ᵀ ∇L̂_h(v).

@@ -1,4 +1,4 @@
-// The discrete evolution F_h: v ↦ ṽ of a TQ discretization (DESIGN §1.3,
+// The discrete evolution F_h: v ↦ ṽ of a TQ discretization (docs/theory.md (TQ),
 // paper Theorem 4.2), solved in blown-up form.
 //
 // (h, v, ṽ) is critical iff d+(v) = d−(ṽ) and P+(v) = P−(ṽ). With the unknowns

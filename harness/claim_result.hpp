@@ -1,4 +1,4 @@
-// What a claim returns: its verdict and the evidence behind it (DESIGN §1.5, §3).
+// What a claim returns: its verdict and the evidence behind it (docs/claims.md).
 //
 // Results are plain data, independent of the scalar type: every number that
 // came out of a computation in the working precision is kept as a decimal

@@ -1,6 +1,6 @@
 // The claim registry: each claim is a small type measuring one quantity,
 // stating one prediction and returning one verdict with its evidence
-// (DESIGN §1.5). Adding a claim = writing its type and listing it here.
+// (docs/claims.md). Adding a claim = writing its type and listing it here.
 #pragma once
 
 #include <string>

@@ -1,4 +1,4 @@
-// vivv: the command-line tool (DESIGN §3).
+// vivv: the command-line tool (docs/case-files.md).
 //
 //   vivv run [CASE.json ...] [--out DIR] [--digits D] [--jobs J] [--refine] [--progress]
 //   vivv report REPORT.json [MORE.json ...] --out DIR   (merge and re-render)

@@ -1,4 +1,4 @@
-// Observed order of convergence (DESIGN §1.6).
+// Observed order of convergence (docs/theory.md (observed orders)).
 //
 // A sweep gives step sizes h_i and errors e_i. The observed order is the
 // least-squares slope of log e against log h over the asymptotic range only:

@@ -31,7 +31,7 @@ struct CaseResult {
   ReferenceCheck reference_check;
   std::vector<ClaimResult> claims;
   SweepRecord sweep;
-  // DESIGN §1.6: bits >= −log2(smallest error) + guard. The smallest error of
+  // docs/theory.md (observed orders): bits >= −log2(smallest error) + guard. The smallest error of
   // any order-fitted series, and the guard bits the precision leaves below it.
   std::string smallest_error;
   double guard_bits = 0;

@@ -1,5 +1,5 @@
 // Turning a measured error sweep into a Series: decimal strings, the fitted
-// order (DESIGN §1.6) and, when the claim predicts one, its verdict.
+// order (docs/theory.md (observed orders)) and, when the claim predicts one, its verdict.
 #pragma once
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// The exact discrete Lagrangian L_d^E(q_b, q_e; h) and its Legendre transforms (DESIGN §1.2).
+// The exact discrete Lagrangian L_d^E(q_b, q_e; h) and its Legendre transforms (docs/theory.md (Q × Q)).
 //
 //   L_d^E(q_b, q_e; h) = ∫₀ʰ L(q(t), q'(t)) dt,   q the solution with q(0) = q_b, q(h) = q_e,
 //   p_begin = −∂L_d^E/∂q_b = p(0) = ∂L/∂w(q_b, q'(0)),   p_end = ∂L_d^E/∂q_e = p(h).

@@ -3,7 +3,7 @@
 // (Hairer–Nørsett–Wanner, Solving ODEs I, §II.9, the ODEX strategy).
 //
 // The Euler–Lagrange equations in first-order form y = (q, w),
-//   q' = w,   w' = M⁻¹ (dL/dq − (d²L/dw dq) w)      (DESIGN §1.1),
+//   q' = w,   w' = M⁻¹ (dL/dq − (d²L/dw dq) w)      (docs/theory.md),
 // are advanced by steps H. Each step computes the modified-midpoint values
 // T_{j,1} with n_j = 2j substeps (Gragg: an expansion in even powers of
 // H/n_j) and extrapolates them to H/n → 0 by Aitken–Neville in h²:

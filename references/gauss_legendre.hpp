@@ -4,7 +4,7 @@
 // on the three-term recurrence from the classical guesses
 // cos(π (i − 1/4) / (m + 1/2)), all in T (π from boost::math::constants, never
 // a double), then mapped from [−1, 1] to [0, 1]. The exact discrete Lagrangian
-// L_d^E (DESIGN §1.2) and the quadrature discrete Lagrangians (§1.3) use them.
+// L_d^E (docs/theory.md (Q × Q)) and the quadrature discrete Lagrangians (§1.3) use them.
 #pragma once
 
 #include <boost/math/constants/constants.hpp>

@@ -1,5 +1,5 @@
 // The near-exact flow F_t the harness measures every discretization against
-// (DESIGN §1.1, §2): the closed form where one exists (harmonic oscillator,
+// (docs/theory.md): the closed form where one exists (harmonic oscillator,
 // pendulum), otherwise Gragg–Bulirsch–Stoer extrapolation to a requested
 // tolerance. It says which method it used, what accuracy it claims and how
 // that claim is backed up.

@@ -68,7 +68,7 @@ nlohmann::json case_json(const CaseResult& result) {
     nlohmann::json all_series = nlohmann::json::array();
     for (const auto& series : claim.series) all_series.push_back(series_json(series));
     c["series"] = all_series;
-    // The main series' fields at claim level (DESIGN §3).
+    // The main series' fields at claim level (docs/case-files.md).
     if (!claim.series.empty()) {
       const nlohmann::json& main = all_series[0];
       for (const char* key : {"h", "error", "observed_order", "predicted_order", "exact_order",
@@ -102,7 +102,7 @@ nlohmann::json case_json(const CaseResult& result) {
             {"bits", result.precision_bits},
             {"smallest_error", result.smallest_error},
             {"guard_bits", result.guard_bits},
-            {"rule", "bits >= -log2(smallest error) + guard (DESIGN 1.6)"}}},
+            {"rule", "bits >= -log2(smallest error) + guard (docs/theory.md, observed orders)"}}},
           {"reference",
            {{"method", result.reference_method},
             {"tolerance", result.reference_tolerance},

@@ -1,4 +1,4 @@
-// Claims stated on discretizations of TQ (paper §4–6, DESIGN §1.5):
+// Claims stated on discretizations of TQ (paper §4–6, docs/claims.md):
 //   order:                |F_h(v) − F^exact_h(v)| = O(h^{r+1})       (Theorem 5.5)
 //   contact-order:        |F²_h(v) − F¹_h(v)| = O(h^{r+1}) for two
 //                         discretizations in order-r contact         (Theorem 5.4)

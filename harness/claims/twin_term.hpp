@@ -5,7 +5,7 @@
 //   mismatched-legendre: in a mismatched DEL (L_d with a, L~_d with ã, or two
 //     different rules) it no longer cancels: the order drops to r − 1, and for
 //     r = 1 the scheme is inconsistent, converging at order 1 to the solution
-//     of the modified equation of DESIGN §1.4 (core/modified_equation.hpp).
+//     of the modified equation of docs/theory.md (twin terms) (core/modified_equation.hpp).
 #pragma once
 
 #include <algorithm>
@@ -165,7 +165,7 @@ struct TwinTermInvarianceClaim {
 
 // The mismatch of a DEL whose future side carries a·h^s and whose past side
 // ã·h^s̃ (either may be absent): p_begin − p_end is shifted by
-// a·h^s − ã·h^s̃, so the force by (a·h^s − ã·h^s̃)/h (DESIGN §1.4). `power` is the
+// a·h^s − ã·h^s̃, so the force by (a·h^s − ã·h^s̃)/h (docs/theory.md (twin terms)). `power` is the
 // lowest power with a nonzero net coefficient and `coefficient` that vector;
 // no power when the two twin terms are identical — no mismatch at all.
 template <class T>

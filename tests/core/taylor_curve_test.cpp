@@ -1,4 +1,4 @@
-// The taylor-r curve segments (DESIGN §1.3): coefficients by Taylor-mode AD in
+// The taylor-r curve segments (docs/theory.md (TQ)): coefficients by Taylor-mode AD in
 // any scalar, exact derivatives with respect to v through nested jets, contact
 // of order r with the exact flow, and the local-order claim on them.
 #include "core/taylor_curve.hpp"

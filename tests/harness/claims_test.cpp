@@ -84,7 +84,7 @@ TYPED_TEST(ClaimsTest, TwinTermCancelsInTheDelButNotInAMismatchedOne) {
             "fail");
 }
 
-// DESIGN §1.4 for every pair (s, s̃): a·h vs none is inconsistent; identical twins are no
+// docs/theory.md (twin terms) for every pair (s, s̃): a·h vs none is inconsistent; identical twins are no
 // mismatch (order r); a·h² vs none shifts the force by O(h): consistent at order 1. Negative
 // control: the same a·h² mismatch declared to keep the midpoint's order 2.
 TYPED_TEST(ClaimsTest, MismatchedTwinsLoseWhatTheMismatchCosts) {

@@ -1,4 +1,4 @@
-// The exact discrete Lagrangian (DESIGN §1.2, issue 3): the harmonic
+// The exact discrete Lagrangian (docs/theory.md (Q × Q), issue 3): the harmonic
 // oscillator's closed form, Legendre transforms equal to the reference momenta
 // at both ends, the Hamilton–Jacobi relations p_begin = −∂L_d^E/∂q_b,
 // p_end = ∂L_d^E/∂q_e by central differences, and a wrong series coefficient
