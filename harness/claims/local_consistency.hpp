@@ -10,8 +10,37 @@
 #include "harness/case_context.hpp"
 #include "harness/series.hpp"
 #include "references/exact_discrete_lagrangian.hpp"
+#include "references/lagrangian_error_expansion.hpp"
 
 namespace vivv {
+
+// The sign, not only the size: (L_d − L_d^E)/h^{r+1} → E_{r+1}, the leading coefficient of
+// E(h) = L_d(q(0), q(h); h) − ∫₀ʰ L dt from the solution's Taylor expansion
+// (references/lagrangian_error_expansion.hpp), at order 1 in h. A swapped weight or
+// interval keeps every order but changes E_{r+1}: this series sees it.
+template <LagrangianSystem System>
+void add_signed_coefficient(ClaimResult& claim, const CaseContext<System>& context,
+                            const std::vector<typename System::Scalar>& signed_error) {
+  using T = typename System::Scalar;
+  using std::abs, std::pow;
+  const int r = context.lagrangian_order();
+  const std::vector<T> expansion = lagrangian_error_expansion(context.system, context.scheme.future,
+                                                              context.initial.q, context.initial.w, r + 3);
+  const T leading = expansion[r + 1];
+  const std::vector<T> steps = context.steps();
+  std::vector<T> distance;
+  for (std::size_t i = 0; i < steps.size(); ++i)
+    distance.push_back(abs(T(signed_error[i] / pow(steps[i], r + 1) - leading)));
+  claim.evidence["leading_coefficient_taylor"] = to_decimal<T>(leading);
+  claim.evidence["leading_coefficient_measured_at_smallest_h"] =
+      to_decimal<T>(T(signed_error.back() / pow(steps.back(), r + 1)));
+  claim.evidence["leading_coefficient_rule"] =
+      "E(h) = L_d(q(0), q(h); h) − ∫₀ʰ L dt = Σ E_k h^k from the Taylor coefficients of the solution; "
+      "(L_d − L_d^E)/h^(r+1) must tend to E_(r+1) at order 1";
+  const T floor = context.floor() / pow(steps.back(), r + 1);
+  claim.series.push_back(make_series("|(L_d − L_d^E)/h^(r+1) − E_(r+1)| (signed leading coefficient)", steps,
+                                     distance, floor, 1.0, false, context.order_tolerance, context.fit_options));
+}
 
 struct LagrangianOrderClaim {
   static constexpr const char* id = "lagrangian-order";
@@ -37,7 +66,7 @@ struct LagrangianOrderClaim {
     // is reported as the cross-check.
     ExactDiscreteLagrangian<System> exact_lagrangian(context.system,
                                                      reference_tolerance_for<T>(context.spec.digits));
-    std::vector<T> error;
+    std::vector<T> error, signed_error;
     T velocity_mismatch = 0;
     int nodes = 0;
     for (const T& h : context.steps()) {
@@ -55,6 +84,7 @@ struct LagrangianOrderClaim {
       T discrete = discrete_lagrangian(context.system, context.scheme.future, q_b, q_e, h);
       using std::abs;
       error.push_back(abs(discrete - exact.value));
+      signed_error.push_back(discrete - exact.value);
     }
     claim.evidence["exact_discrete_lagrangian"] =
         "Newton shooting on the Taylor flow with its variational equations; action by composite "
@@ -62,6 +92,7 @@ struct LagrangianOrderClaim {
     claim.evidence["shooting_velocity_mismatch"] = to_decimal<T>(velocity_mismatch);
     claim.series.push_back(make_series("|L_d − L_d^E|", context.steps(), error, context.floor(),
                                        predicted.order, predicted.exact, context.order_tolerance, context.fit_options));
+    if constexpr (TapeRecordable<System>) add_signed_coefficient(claim, context, signed_error);
     conclude(claim);
     return claim;
   }

@@ -33,6 +33,14 @@ struct OperationProbe {
   std::function<T(const T& a, const T& b, int k)> coefficient;
 };
 
+// k!
+template <class T>
+T factorial(int k) {
+  T value = 1;
+  for (int j = 2; j <= k; ++j) value *= j;
+  return value;
+}
+
 // binom(c, k) for real c.
 template <class T>
 T binomial(const T& c, int k) {
@@ -48,11 +56,7 @@ std::vector<OperationProbe<T>> probes() {
   const T half_pi = boost::math::constants::half_pi<T>();
   return {
       {"exp", [](const TapeScalar<T>& x) { return exp(x); },
-       [](const T& a, const T& b, int k) {
-         T factorial = 1;
-         for (int j = 2; j <= k; ++j) factorial *= j;
-         return T(exp(a) * pow(b, k) / factorial);
-       }},
+       [](const T& a, const T& b, int k) { return T(exp(a) * pow(b, k) / factorial<T>(k)); }},
       {"log", [](const TapeScalar<T>& x) { return log(x); },
        [](const T& a, const T& b, int k) {
          if (k == 0) return T(log(a));
@@ -69,17 +73,9 @@ std::vector<OperationProbe<T>> probes() {
          return T((k == 0 ? T(1) / 3 : T(0)) + T(2) / 3 * pow(-b / a, k) / a);
        }},
       {"sin", [](const TapeScalar<T>& x) { return sin(x); },
-       [half_pi](const T& a, const T& b, int k) {
-         T factorial = 1;
-         for (int j = 2; j <= k; ++j) factorial *= j;
-         return T(sin(a + k * half_pi) * pow(b, k) / factorial);
-       }},
+       [half_pi](const T& a, const T& b, int k) { return T(sin(a + k * half_pi) * pow(b, k) / factorial<T>(k)); }},
       {"cos", [](const TapeScalar<T>& x) { return cos(x); },
-       [half_pi](const T& a, const T& b, int k) {
-         T factorial = 1;
-         for (int j = 2; j <= k; ++j) factorial *= j;
-         return T(cos(a + k * half_pi) * pow(b, k) / factorial);
-       }},
+       [half_pi](const T& a, const T& b, int k) { return T(cos(a + k * half_pi) * pow(b, k) / factorial<T>(k)); }},
       {"square", [](const TapeScalar<T>& x) { return x * x; },
        [](const T& a, const T& b, int k) { return k == 0 ? T(a * a) : k == 1 ? T(2 * a * b) : k == 2 ? T(b * b) : T(0); }},
   };

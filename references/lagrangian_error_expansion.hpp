@@ -1,0 +1,78 @@
+// The local error of a Q×Q discrete Lagrangian along a solution, as a power
+// series in h computed from the solution's Taylor expansion:
+//
+//   E(h) = L_d(q(0), q(h); h) − ∫₀ʰ L(q(t), q'(t)) dt = Σ_k E_k h^k,
+//
+// q(t) = Σ q_k t^k the Taylor series of the Euler–Lagrange solution through
+// (q0, w0) (Taylor-mode AD of the system's L, core/taylor_curve.hpp). Each rule
+// is written here again from its formula (docs/case-files.md), in truncated
+// power series, independently of core/discrete_lagrangian.hpp: the leading
+// coefficient E_{r+1} is a *signed* prediction that lagrangian-order compares
+// with the measured L_d − L_d^E, so a swapped weight (β ↔ 1 − β) or a swapped
+// interval, which keep every order, is seen.
+#pragma once
+
+#include <vector>
+
+#include "core/discrete_lagrangian.hpp"
+#include "core/euler_lagrange_tape.hpp"
+#include "core/power_series.hpp"
+#include "core/taylor_curve.hpp"
+
+namespace vivv {
+
+// E_0 … E_{terms−1} of E(h) for the discretization `d` along the solution through (q0, w0).
+template <LagrangianSystem System>
+std::vector<typename System::Scalar> lagrangian_error_expansion(
+    const System& system, const QxQDiscretization<typename System::Scalar>& d,
+    const Vector<typename System::Scalar, System::dimension>& q0,
+    const Vector<typename System::Scalar, System::dimension>& w0, int terms) {
+  using T = typename System::Scalar;
+  using P = PowerSeries<T>;
+  constexpr int n = System::dimension;
+  const Tape<T> tape = euler_lagrange_tape(system);
+  std::vector<T> x0(n), v0(n);
+  for (int i = 0; i < n; ++i) x0[i] = q0[i], v0[i] = w0[i];
+  const auto solution = solution_taylor_coefficients<T, T>(tape, x0, v0, terms);
+  // q(h), q'(h), the constant q(0), and the difference quotient (q(h) − q(0))/h.
+  Point<P, n> q, w, q_begin, quotient;
+  for (int i = 0; i < n; ++i) {
+    q[i] = P::from(std::vector<T>(solution[i].begin(), solution[i].begin() + terms));
+    w[i] = q[i].derivative();
+    q_begin[i] = P(q0[i], terms);
+    quotient[i] = (q[i] - q_begin[i]).shifted(-1);
+  }
+  // ∫₀ʰ L dt: the series of L along the solution, integrated term by term.
+  const P along = system.lagrangian(q, w);
+  P action(T(0), terms);
+  for (int k = 1; k < terms; ++k) action[k] = along[k - 1] / k;
+  // L_d, rule by rule from its formula.
+  auto on_segment = [&](const T& fraction) {
+    Point<P, n> point;
+    for (int i = 0; i < n; ++i) point[i] = (1 - fraction) * q_begin[i] + fraction * q[i];
+    return system.lagrangian(point, quotient);
+  };
+  const T& c = d.parameter;
+  P per_step;  // L_d / h
+  switch (d.rule) {
+    case QxQRule::left_rectangle: per_step = system.lagrangian(q_begin, quotient); break;
+    case QxQRule::right_rectangle: per_step = system.lagrangian(q, quotient); break;
+    case QxQRule::midpoint: per_step = on_segment(T(1) / 2); break;
+    case QxQRule::alpha: per_step = on_segment(c); break;
+    case QxQRule::trapezoid:
+      per_step = (system.lagrangian(q_begin, quotient) + system.lagrangian(q, quotient)) / 2;
+      break;
+    case QxQRule::weighted:
+      per_step = (1 - c) * system.lagrangian(q_begin, quotient) + c * system.lagrangian(q, quotient);
+      break;
+  }
+  P discrete = per_step.shifted(1);
+  if (d.twin)  // + a·h^s·(q(h) − q(0))
+    for (int i = 0; i < n; ++i) discrete = discrete + (d.twin->a[i] * (q[i] - q_begin[i])).shifted(d.twin->power);
+  const P error = discrete - action;
+  std::vector<T> out(terms);
+  for (int k = 0; k < terms; ++k) out[k] = error.coefficient(k);
+  return out;
+}
+
+}  // namespace vivv
