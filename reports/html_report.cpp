@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cases/case_file.hpp"
+#include "reports/report.hpp"
 #include "reports/report_text.hpp"
 
 namespace vivv {
@@ -728,8 +729,7 @@ std::string speed_map_figure(const json& claim, const std::string& key) {
 std::string notes_html(const json& c, const json& claim) {
   std::string notes;
   const std::string tolerance = text_of(c, "order_tolerance");
-  if (claim.value("predicted_order", json()).is_number() && !tolerance.empty() &&
-      std::stold(tolerance) != std::stold(default_order_tolerance))
+  if (claim.value("predicted_order", json()).is_number() && !default_tolerance(tolerance))
     notes += "<div class=\"note-cell\" data-note=\"tolerance\">order tolerance " + escape(tolerance) +
              " (default " + default_order_tolerance + ")</div>";
   if (claim.contains("xfail_reason"))

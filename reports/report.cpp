@@ -131,7 +131,14 @@ std::string summary_text(const nlohmann::json& summary) {
 }
 
 bool default_tolerance(const std::string& tolerance) {
-  return tolerance.empty() || std::stold(tolerance) == std::stold(default_order_tolerance);
+  if (tolerance.empty()) return true;
+  try {  // a merged report may carry anything here: what does not parse is shown, not trusted
+    std::size_t used = 0;
+    const long double value = std::stold(tolerance, &used);
+    return used == tolerance.size() && value == std::stold(default_order_tolerance);
+  } catch (const std::exception&) {
+    return false;
+  }
 }
 
 nlohmann::json verdict_counts(const nlohmann::json& cases) {
