@@ -1,7 +1,9 @@
 #include "cases/case_file.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
+#include <optional>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -26,11 +28,37 @@ std::vector<std::string> claim_names() { return claim_ids(); }
 
 namespace {
 
-// The value of a decimal "0.5" or a fraction "1/2", to compare two of them.
+// The longest number a case file may write: enough for 2000-digit inputs.
+constexpr std::size_t longest_number = 4000;
+// Offending values are echoed at most this long.
+constexpr std::size_t longest_echo = 80;
+
+// `text` for an error message, cut to longest_echo characters.
+std::string echo(const std::string& text) {
+  if (text.size() <= longest_echo) return text;
+  return text.substr(0, longest_echo) + "… (" + std::to_string(text.size()) + " characters)";
+}
+std::string echo(const nlohmann::json& value) { return echo(value.dump()); }
+
+// The value of a decimal already matched by the reader's pattern, as a long double, for range
+// checks; nullopt when it is outside long double's range (e.g. "1e5000", "1e-5000").
+std::optional<long double> decimal_value_of(const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const long double value = std::stold(text, &used);
+    if (used != text.size()) return std::nullopt;
+    return value;
+  } catch (const std::exception&) {  // std::out_of_range on overflow or underflow
+    return std::nullopt;
+  }
+}
+
+// The value of a decimal "0.5" or a fraction "1/2", to compare two of them (both checked already).
 long double fraction_value(const std::string& text) {
   auto slash = text.find('/');
-  if (slash == std::string::npos) return std::stold(text);
-  return std::stold(text.substr(0, slash)) / std::stold(text.substr(slash + 1));
+  if (slash == std::string::npos) return decimal_value_of(text).value_or(0);
+  return decimal_value_of(text.substr(0, slash)).value_or(0) /
+         decimal_value_of(text.substr(slash + 1)).value_or(1);
 }
 
 std::string join(const std::vector<std::string>& items) {
@@ -70,31 +98,39 @@ class Reader {
   std::string decimal_value(const nlohmann::json& value, const std::string& where) const {
     static const std::regex pattern(R"([+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?)");
     if (!value.is_string())
-      throw CaseError(file_, where, "expected a decimal string such as \"1.5\", got " + value.dump());
+      throw CaseError(file_, where, "expected a decimal string such as \"1.5\", got " + echo(value));
     std::string text = value.get<std::string>();
+    if (text.size() > longest_number)
+      throw CaseError(file_, where, "expected a decimal number of at most " + std::to_string(longest_number) +
+                                        " characters, got " + std::to_string(text.size()));
     if (!std::regex_match(text, pattern))
-      throw CaseError(file_, where, "expected a decimal number, got \"" + text + "\"");
+      throw CaseError(file_, where, "expected a decimal number, got \"" + echo(text) + "\"");
+    if (!decimal_value_of(text))
+      throw CaseError(file_, where, "the number \"" + echo(text) + "\" is outside the range vivv accepts "
+                                    "(about 1e-4900 to 1e4900)");
     return text;
   }
   // A number in [0, 1] written as a decimal string or a fraction "p/q".
   std::string fraction(const std::string& key) {
     const auto& value = get(key);
     static const std::regex pattern(R"((\d+\.?\d*|\.\d+)(/[1-9]\d*)?)");
-    if (!value.is_string() || !std::regex_match(value.get<std::string>(), pattern))
-      fail(key, "expected a decimal or a fraction such as \"1/2\", got " + value.dump());
+    if (!value.is_string() || value.get<std::string>().size() > longest_echo ||
+        !std::regex_match(value.get<std::string>(), pattern))
+      fail(key, "expected a decimal or a fraction such as \"1/2\", got " + echo(value));
     std::string text = value.get<std::string>();
     auto slash = text.find('/');
-    long double x = slash == std::string::npos
-                        ? std::stold(text)
-                        : std::stold(text.substr(0, slash)) / std::stold(text.substr(slash + 1));
-    if (x < 0 || x > 1) fail(key, "expected a value in [0, 1], got \"" + text + "\"");
+    const std::string numerator = text.substr(0, slash);
+    if (!decimal_value_of(numerator) ||
+        (slash != std::string::npos && !decimal_value_of(text.substr(slash + 1))))
+      fail(key, "expected a value in [0, 1], got \"" + echo(text) + "\"");
+    long double x = fraction_value(text);
+    if (x < 0 || x > 1) fail(key, "expected a value in [0, 1], got \"" + echo(text) + "\"");
     return text;
   }
   std::vector<std::string> decimals(const std::string& key, std::size_t size) {
     const auto& value = get(key);
     if (!value.is_array() || value.size() != size)
-      fail(key, "expected an array of " + std::to_string(size) + " decimal strings, got " +
-                    value.dump());
+      fail(key, "expected an array of " + std::to_string(size) + " decimal strings, got " + echo(value));
     std::vector<std::string> out;
     for (std::size_t i = 0; i < size; ++i)
       out.push_back(decimal_value(value[i], field(key) + "[" + std::to_string(i) + "]"));
@@ -103,27 +139,27 @@ class Reader {
   int integer(const std::string& key, int low, int high) {
     const auto& value = get(key);
     if (!value.is_number_integer() || value.get<long long>() < low || value.get<long long>() > high)
-      fail(key, "expected an integer in [" + std::to_string(low) + ", " + std::to_string(high) +
-                    "], got " + value.dump());
+      fail(key, "expected an integer in [" + std::to_string(low) + ", " + std::to_string(high) + "], got " +
+                    echo(value));
     return value.get<int>();
   }
   std::string string(const std::string& key) {
     const auto& value = get(key);
-    if (!value.is_string()) fail(key, "expected a string, got " + value.dump());
+    if (!value.is_string()) fail(key, "expected a string, got " + echo(value));
     return value.get<std::string>();
   }
   std::string one_of(const std::string& key, const std::vector<std::string>& choices) {
     std::string value = string(key);
     if (std::find(choices.begin(), choices.end(), value) == choices.end())
-      fail(key, "unknown name '" + value + "'; expected one of: " + join(choices));
+      fail(key, "unknown name '" + echo(value) + "'; expected one of: " + join(choices));
     return value;
   }
   std::vector<std::string> strings(const std::string& key) {
     const auto& value = get(key);
-    if (!value.is_array()) fail(key, "expected an array of strings, got " + value.dump());
+    if (!value.is_array()) fail(key, "expected an array of strings, got " + echo(value));
     std::vector<std::string> out;
     for (const auto& item : value) {
-      if (!item.is_string()) fail(key, "expected an array of strings, got " + value.dump());
+      if (!item.is_string()) fail(key, "expected an array of strings, got " + echo(value));
       out.push_back(item.get<std::string>());
     }
     return out;
@@ -211,7 +247,7 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   initial.finish();
 
   spec.final_time = reader.decimal("T");
-  if (spec.final_time.front() == '-' || std::stold(spec.final_time) <= 0)
+  if (spec.final_time.front() == '-' || !(*decimal_value_of(spec.final_time) > 0))
     reader.fail("T", "expected a positive time, got \"" + spec.final_time + "\"");
 
   const auto& steps = reader.get("steps");
@@ -237,8 +273,8 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   if (reader.has("start")) spec.start = reader.one_of("start", {"reference", "momentum"});
   if (reader.has("order_tolerance")) {
     spec.order_tolerance = reader.decimal("order_tolerance");
-    const long double tolerance = std::stold(spec.order_tolerance);
-    if (!(tolerance > 0) || tolerance > std::stold(maximum_order_tolerance))
+    const long double tolerance = *decimal_value_of(spec.order_tolerance);
+    if (!(tolerance > 0) || tolerance > *decimal_value_of(maximum_order_tolerance))
       reader.fail("order_tolerance", std::string("expected a tolerance in (0, ") + maximum_order_tolerance +
                                          "], got \"" + spec.order_tolerance +
                                          "\": a wider one would accept an order-r prediction at order r − 1");
@@ -322,16 +358,35 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   return spec;
 }
 
+nlohmann::json parse_json_strictly(std::istream& in, const std::string& where) {
+  // Depth limit and duplicate keys, from the parser's events: one set of keys per open object.
+  std::vector<std::set<std::string>> open_objects;
+  auto strict = [&](int depth, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+    using event_t = nlohmann::json::parse_event_t;
+    if (depth > maximum_json_depth)
+      throw CaseError(where, "", "nested deeper than " + std::to_string(maximum_json_depth) + " levels");
+    if (event == event_t::object_start) open_objects.emplace_back();
+    if (event == event_t::object_end && !open_objects.empty()) open_objects.pop_back();
+    if (event == event_t::key && !open_objects.empty() &&
+        !open_objects.back().insert(parsed.get<std::string>()).second)
+      throw CaseError(where, parsed.get<std::string>(), "the key occurs twice in one object");
+    return true;
+  };
+  try {
+    return nlohmann::json::parse(in, strict);
+  } catch (const nlohmann::json::parse_error& error) {
+    throw CaseError(where, "", std::string("not valid JSON: ") + error.what());
+  }
+}
+
 CaseSpec read_case_file(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error))
+    throw CaseError(path, "", std::filesystem::exists(path, error) ? "not a regular file (a directory?)"
+                                                                   : "cannot open the case file: no such file");
   std::ifstream in(path);
   if (!in) throw CaseError(path, "", "cannot open the case file");
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& error) {
-    throw CaseError(path, "", std::string("not valid JSON: ") + error.what());
-  }
-  return parse_case(json, path);
+  return parse_case(parse_json_strictly(in, path), path);
 }
 
 }  // namespace vivv

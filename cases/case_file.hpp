@@ -7,6 +7,7 @@
 // working precision only when the case runs.
 #pragma once
 
+#include <istream>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -80,8 +81,15 @@ struct CaseSpec {
   std::vector<std::string> labels;       // e.g. "paper"
 };
 
-// Reads and validates a case file; throws CaseError.
+// Reads and validates a case file; throws CaseError (also for a path that is
+// not a regular file, JSON nested deeper than maximum_json_depth and a key
+// that occurs twice in one object).
 CaseSpec read_case_file(const std::string& path);
+
+// JSON from `in`, refusing nesting deeper than maximum_json_depth and
+// duplicate keys; CaseError naming `where` otherwise.
+inline constexpr int maximum_json_depth = 64;
+nlohmann::json parse_json_strictly(std::istream& in, const std::string& where);
 // Validates an already-parsed case; `file` names it in errors.
 CaseSpec parse_case(const nlohmann::json& json, const std::string& file);
 

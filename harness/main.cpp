@@ -68,6 +68,10 @@ std::string report_file_name(const std::string& file) {
 
 std::vector<std::string> default_suite() {
   std::vector<std::string> files;
+  std::error_code error;
+  if (!fs::is_directory(default_suite_directory(), error))
+    throw BadInput("no case files given, and the default suite " + default_suite_directory() +
+                   " (compiled in from the source tree) is not there: name the case files");
   for (const auto& entry : fs::directory_iterator(default_suite_directory()))
     if (entry.path().extension() == ".json") files.push_back(entry.path().string());
   std::sort(files.begin(), files.end());
@@ -141,8 +145,12 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
     for (std::size_t i = 0; i < specs.size(); ++i) results[i] = run_one(specs[i], options);
     return results;
   }
-  fs::path work = fs::temp_directory_path() / ("vivv-" + std::to_string(getpid()));
-  fs::create_directories(work);
+  // A private directory (mode 0700, unpredictable name) for the workers' results, each file
+  // created exclusively and never through a link.
+  std::string work_template = (fs::temp_directory_path() / "vivv-XXXXXX").string();
+  if (!mkdtemp(work_template.data()))
+    throw BadInput("cannot create a private temporary directory under " + fs::temp_directory_path().string());
+  fs::path work = work_template;
   std::map<pid_t, std::size_t> running;
   std::string failures;
   std::size_t next = 0;
@@ -166,7 +174,7 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
       if (pid == 0) {
         int code = 0;
         try {
-          std::ofstream(work / (std::to_string(next) + ".json")) << run_one(specs[next], options).dump();
+          write_exclusively(work / (std::to_string(next) + ".json"), run_one(specs[next], options).dump());
         } catch (const std::exception& error) {
           std::cerr << "vivv: " << error.what() << "\n";
           code = exit_bad_input;
@@ -186,8 +194,23 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
 
 int write_reports(const std::string& out, const nlohmann::json& report);
 
+// Before any work: DIR must be a directory vivv can create and write in.
+void check_output_directory(const std::string& out) {
+  std::error_code error;
+  if (fs::exists(out, error) && !fs::is_directory(out, error))
+    throw BadInput("--out: '" + out + "' exists and is not a directory");
+  fs::create_directories(out, error);
+  if (error) throw BadInput("--out: cannot create '" + out + "': " + error.message());
+  std::string probe = (fs::path(out) / ".vivv-write-test-XXXXXX").string();
+  int fd = mkstemp(probe.data());
+  if (fd < 0) throw BadInput("--out: cannot write in '" + out + "'");
+  close(fd);
+  fs::remove(probe, error);
+}
+
 int command_run(const std::vector<std::string>& args, const std::string& command_line) {
   RunOptions options = parse_run_options(args);
+  check_output_directory(options.out);
   std::vector<CaseSpec> specs;
   std::map<std::string, std::string> names;
   for (const auto& file : options.case_files) {
@@ -236,6 +259,7 @@ int command_report(const std::vector<std::string>& args, const std::string& comm
   }
   if (inputs.empty()) throw BadInput("vivv report: expected at least one report.json");
   if (out.empty()) throw BadInput("vivv report: expected --out DIR");
+  check_output_directory(out);
   return write_reports(out, merge_reports(inputs, {command_line, library_versions()}));
 }
 
@@ -296,6 +320,12 @@ int main(int argc, char** argv) {
     std::cerr << "vivv: " << error.what() << "\n";
     return exit_bad_input;
   } catch (const ReportError& error) {
+    std::cerr << "vivv: " << error.what() << "\n";
+    return exit_bad_input;
+  } catch (const nlohmann::json::exception& error) {  // a report.json of the wrong shape
+    std::cerr << "vivv: malformed input: " << error.what() << "\n";
+    return exit_bad_input;
+  } catch (const std::exception& error) {  // nothing escapes main: exit 2 with what happened
     std::cerr << "vivv: " << error.what() << "\n";
     return exit_bad_input;
   }

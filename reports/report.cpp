@@ -1,7 +1,14 @@
 #include "reports/report.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -207,23 +214,96 @@ nlohmann::json merge_reports(const std::vector<std::pair<std::string, nlohmann::
           {"cases", cases}};
 }
 
+namespace {
+
+// What the renderers read without checking: each case an object with a non-empty string name,
+// an object initial and a list of claims; each claim an object with a string id and a known
+// verdict. Throws ReportError naming the field.
+void check_report_shape(const nlohmann::json& report, const std::string& path) {
+  const nlohmann::json& cases = report.at("cases");
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const std::string where = path + ": cases[" + std::to_string(i) + "]";
+    const nlohmann::json& c = cases[i];
+    if (!c.is_object()) throw ReportError(where + ": expected an object");
+    if (!c.contains("name") || !c["name"].is_string() || c["name"].get<std::string>().empty())
+      throw ReportError(where + ".name: expected a non-empty string");
+    if (!c.contains("initial") || !c["initial"].is_object())
+      throw ReportError(where + ".initial: expected an object");
+    if (!c.contains("claims") || !c["claims"].is_array()) throw ReportError(where + ".claims: expected a list");
+    for (std::size_t k = 0; k < c["claims"].size(); ++k) {
+      const std::string at = where + ".claims[" + std::to_string(k) + "]";
+      const nlohmann::json& claim = c["claims"][k];
+      if (!claim.is_object()) throw ReportError(at + ": expected an object");
+      if (!claim.contains("id") || !claim["id"].is_string()) throw ReportError(at + ".id: expected a string");
+      const auto& names = verdict_names();
+      if (!claim.contains("verdict") || !claim["verdict"].is_string() ||
+          std::find(names.begin(), names.end(), claim["verdict"].get<std::string>()) == names.end())
+        throw ReportError(at + ".verdict: expected one of pass, fail, error, xfail, xpass");
+      if (claim.contains("xfail_reason") && !claim["xfail_reason"].is_string())
+        throw ReportError(at + ".xfail_reason: expected a string");
+      if (claim.contains("series") && !claim["series"].is_array())
+        throw ReportError(at + ".series: expected a list");
+    }
+  }
+}
+
+}  // namespace
+
 nlohmann::json read_report(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) throw ReportError(path + ": not a regular file");
   std::ifstream in(path);
   if (!in) throw ReportError(path + ": cannot open");
   nlohmann::json report;
   try {
-    report = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& error) {
-    throw ReportError(path + ": not JSON (" + error.what() + ")");
+    report = parse_json_strictly(in, path);
+  } catch (const CaseError& error) {
+    throw ReportError(error.what());
   }
   if (!report.is_object() || !report.contains("schema") || report["schema"] != report_schema)
     throw ReportError(
         path + ": schema: expected \"" + std::string(report_schema) + "\", got " +
-        (report.is_object() && report.contains("schema") ? report["schema"].dump() : "none"));
-  if (!report.contains("cases") || !report["cases"].is_array() || !report.contains("run"))
-    throw ReportError(path + ": expected the fields \"cases\" (a list) and \"run\"");
+        (report.is_object() && report.contains("schema") ? report["schema"].dump().substr(0, 80) : "none"));
+  if (!report.contains("cases") || !report["cases"].is_array() || !report.contains("run") ||
+      !report["run"].is_object())
+    throw ReportError(path + ": expected the fields \"cases\" (a list) and \"run\" (an object)");
+  check_report_shape(report, path);
   return report;
 }
+
+namespace {
+
+// Writes `content` to all of fd; false on a write error.
+bool write_all(int fd, const std::string& content) {
+  std::size_t written = 0;
+  while (written < content.size()) {
+    const ssize_t n = ::write(fd, content.data() + written, content.size() - written);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return false;
+    }
+    written += static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+// A new temporary file beside `path` (PATH.XXXXXX: unpredictable, created exclusively, so never
+// through a planted link) holding `content`, mode 0644; its name. Throws ReportError, leaving
+// nothing behind.
+std::string write_temporary(const std::string& path, const std::string& content) {
+  std::string temporary = path + ".XXXXXX";
+  const int fd = mkstemp(temporary.data());
+  if (fd < 0) throw ReportError("cannot create a temporary file beside " + path + ": " + std::strerror(errno));
+  const bool ok = fchmod(fd, 0644) == 0 && write_all(fd, content) && fsync(fd) == 0;
+  const bool closed = close(fd) == 0;
+  if (!ok || !closed) {
+    std::remove(temporary.c_str());
+    throw ReportError("cannot write " + temporary);
+  }
+  return temporary;
+}
+
+}  // namespace
 
 std::vector<std::string> write_report_directory(const std::string& directory,
                                                 const nlohmann::json& report) {
@@ -232,29 +312,37 @@ std::vector<std::string> write_report_directory(const std::string& directory,
       {"report.json", report.dump(2) + "\n"},
       {"report.html", render_html(report)},
       {"junit.xml", render_junit(report)}};
-  fs::create_directories(directory);
-  std::vector<std::string> paths;
-  // Every temporary first, then the renames: a write error leaves no final file changed.
-  for (const auto& [name, content] : files) {
-    paths.push_back((fs::path(directory) / name).string());
-    std::ofstream out(paths.back() + ".partial", std::ios::binary | std::ios::trunc);
-    out << content;
-    out.flush();
-    if (!out) throw ReportError("cannot write " + paths.back() + ".partial");
+  std::error_code error;
+  fs::create_directories(directory, error);
+  if (error) throw ReportError("cannot create " + directory + ": " + error.message());
+  std::vector<std::string> paths, temporaries;
+  // Every temporary first, then the renames: a write error leaves no final file changed and no
+  // temporary behind.
+  try {
+    for (const auto& [name, content] : files) {
+      paths.push_back((fs::path(directory) / name).string());
+      temporaries.push_back(write_temporary(paths.back(), content));
+    }
+  } catch (...) {
+    for (const auto& temporary : temporaries) std::remove(temporary.c_str());
+    throw;
   }
-  for (const auto& path : paths) fs::rename(path + ".partial", path);
+  for (std::size_t i = 0; i < paths.size(); ++i) fs::rename(temporaries[i], paths[i]);
   return paths;
 }
 
 void write_atomically(const std::string& path, const std::string& content) {
-  std::string temporary = path + ".partial";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out << content;
-    out.flush();
-    if (!out) throw std::runtime_error("cannot write " + temporary);
+  std::filesystem::rename(write_temporary(path, content), path);
+}
+
+void write_exclusively(const std::string& path, const std::string& content) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+  if (fd < 0) throw ReportError("cannot create " + path + ": " + std::strerror(errno));
+  const bool ok = write_all(fd, content);
+  if (close(fd) != 0 || !ok) {
+    std::remove(path.c_str());
+    throw ReportError("cannot write " + path);
   }
-  std::filesystem::rename(temporary, path);
 }
 
 void print_claims_table(std::ostream& out, const nlohmann::json& report) {

@@ -55,6 +55,10 @@ nlohmann::json case_json(const CaseResult& result);
 // reader never sees a half-written report.
 void write_atomically(const std::string& path, const std::string& content);
 
+// Writes `content` to a new file `path`: created exclusively, never through a
+// symbolic link (O_CREAT | O_EXCL | O_NOFOLLOW), mode 0600.
+void write_exclusively(const std::string& path, const std::string& content);
+
 // The aligned claims table: case, claim, verdict, observed and predicted order.
 void print_claims_table(std::ostream& out, const nlohmann::json& report);
 
