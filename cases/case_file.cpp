@@ -274,10 +274,11 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   if (reader.has("order_tolerance")) {
     spec.order_tolerance = reader.decimal("order_tolerance");
     const long double tolerance = *decimal_value_of(spec.order_tolerance);
-    if (!(tolerance > 0) || tolerance > *decimal_value_of(maximum_order_tolerance))
-      reader.fail("order_tolerance", std::string("expected a tolerance in (0, ") + maximum_order_tolerance +
-                                         "], got \"" + spec.order_tolerance +
-                                         "\": a wider one would accept an order-r prediction at order r − 1");
+    if (!(tolerance >= 0.001L) || tolerance > *decimal_value_of(maximum_order_tolerance))
+      reader.fail("order_tolerance", std::string("expected a tolerance in [0.001, ") + maximum_order_tolerance +
+                                         "], got \"" + echo(spec.order_tolerance) +
+                                         "\": a wider one would accept an order-r prediction at order r − 1, "
+                                         "a narrower one is below what a fitted order can resolve");
   }
   if (reader.has("labels")) spec.labels = reader.strings("labels");
 
