@@ -96,7 +96,8 @@ class Reader {
   // A number written as a decimal string, e.g. "1.1" or "-2.5e-3".
   std::string decimal(const std::string& key) { return decimal_value(get(key), field(key)); }
   std::string decimal_value(const nlohmann::json& value, const std::string& where) const {
-    static const std::regex pattern(R"([+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?)");
+    // The form report.json keeps (reports/schema.json): "-0.5", "2", "1.25e-3"; not "+2", ".5", "2.".
+    static const std::regex pattern(R"(-?\d+(\.\d+)?([eE][+-]?\d+)?)");
     if (!value.is_string())
       throw CaseError(file_, where, "expected a decimal string such as \"1.5\", got " + echo(value));
     std::string text = value.get<std::string>();
@@ -104,7 +105,8 @@ class Reader {
       throw CaseError(file_, where, "expected a decimal number of at most " + std::to_string(longest_number) +
                                         " characters, got " + std::to_string(text.size()));
     if (!std::regex_match(text, pattern))
-      throw CaseError(file_, where, "expected a decimal number, got \"" + echo(text) + "\"");
+      throw CaseError(file_, where, "expected a decimal number such as \"-0.5\", \"2\" or \"1.25e-3\" (digits on "
+                                    "both sides of a point, no '+'), got \"" + echo(text) + "\"");
     if (!decimal_value_of(text))
       throw CaseError(file_, where, "the number \"" + echo(text) + "\" is outside the range vivv accepts "
                                     "(about 1e-4900 to 1e4900)");
@@ -113,7 +115,7 @@ class Reader {
   // A number in [0, 1] written as a decimal string or a fraction "p/q".
   std::string fraction(const std::string& key) {
     const auto& value = get(key);
-    static const std::regex pattern(R"((\d+\.?\d*|\.\d+)(/[1-9]\d*)?)");
+    static const std::regex pattern(R"(\d+(\.\d+)?(/[1-9]\d*)?)");
     if (!value.is_string() || value.get<std::string>().size() > longest_echo ||
         !std::regex_match(value.get<std::string>(), pattern))
       fail(key, "expected a decimal or a fraction such as \"1/2\", got " + echo(value));
@@ -220,8 +222,10 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   spec.file = file;
   spec.source = json;
   spec.name = reader.string("name");
-  if (spec.name.empty() || spec.name.find_first_of("/\\ ") != std::string::npos)
-    reader.fail("name", "expected a non-empty name without spaces or slashes");
+  if (spec.name.empty() || spec.name.size() > 200 || spec.name.find_first_of("/\\ ") != std::string::npos ||
+      std::any_of(spec.name.begin(), spec.name.end(), [](unsigned char c) { return c < 0x20 || c == 0x7f; }))
+    reader.fail("name", "expected a non-empty name of at most 200 characters without spaces, slashes or "
+                        "control characters");
 
   Reader system = reader.object("system");
   spec.system = system.one_of("name", system_names());
@@ -284,6 +288,9 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
 
   spec.claims = reader.strings("claims");
   if (spec.claims.empty()) reader.fail("claims", "expected at least one claim");
+  for (std::size_t i = 1; i < spec.claims.size(); ++i)
+    if (std::find(spec.claims.begin(), spec.claims.begin() + i, spec.claims[i]) != spec.claims.begin() + i)
+      throw CaseError(file, "claims[" + std::to_string(i) + "]", "'" + echo(spec.claims[i]) + "' is listed twice");
   for (std::size_t i = 0; i < spec.claims.size(); ++i) {
     const auto& id = spec.claims[i];
     std::string where = "claims[" + std::to_string(i) + "]";

@@ -28,7 +28,11 @@ std::string xml_escape(const std::string& text) {
         out += "&#39;";
         break;
       default:
-        out += c;
+        // XML 1.0 allows no control characters but tab, newline and carriage return.
+        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r')
+          out += "\xEF\xBF\xBD";  // U+FFFD REPLACEMENT CHARACTER
+        else
+          out += c;
     }
   }
   return out;

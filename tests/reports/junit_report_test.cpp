@@ -51,6 +51,19 @@ TEST(JunitReport, ExpectedFailureIsSkippedAndAnUnexpectedPassFails) {
   EXPECT_TRUE(run_succeeded(report["summary"])) << report["summary"];
 }
 
+// XML 1.0 has no control characters but tab, newline and carriage return: any other in a
+// reason or explanation is replaced, so junit.xml stays well-formed.
+TEST(JunitReport, ControlCharactersAreReplaced) {
+  nlohmann::json report = testing::synthetic_report();
+  report["cases"][0]["claims"][1]["verdict"] = "xfail";
+  report["cases"][0]["claims"][1]["xfail_reason"] = std::string("bell\x07 and escape\x1b");
+  report["summary"] = verdict_counts(report["cases"]);
+  const std::string xml = render_junit(report);
+  EXPECT_EQ(xml.find('\x07'), std::string::npos);
+  EXPECT_EQ(xml.find('\x1b'), std::string::npos);
+  EXPECT_NE(xml.find("bell\xEF\xBF\xBD and escape\xEF\xBF\xBD"), std::string::npos) << xml;
+}
+
 TEST(JunitReport, FailingClaimCarriesExplanationAndEvidence) {
   const std::string xml = render_junit(testing::synthetic_report());
   EXPECT_EQ(count(xml, "<failure "), 1);
