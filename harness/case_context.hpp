@@ -191,12 +191,11 @@ ReferenceCheck check_reference(const Reference& reference, const State<T, n>& in
           estimate <= allowed};
 }
 
-// An order claim's prediction: `order`, exact when the case declared it, and
-// the theorem's own bound it sharpens.
+// An order claim's prediction: `order`, exact when the case declared it (then
+// never below the theorem's own bound).
 struct OrderPrediction {
   int order = 0;
   bool exact = false;
-  int theorem = 0;
 };
 
 template <LagrangianSystem System>
@@ -275,8 +274,8 @@ struct CaseContext {
   // theorem's (check_declared_orders in harness/claims.hpp).
   OrderPrediction predict(const std::string& claim, int theorem) const {
     auto it = spec.expect.find(claim);
-    if (it == spec.expect.end()) return {theorem, false, theorem};
-    return {it->second, true, theorem};
+    if (it == spec.expect.end()) return {theorem, false};
+    return {it->second, true};
   }
 
   // Errors below this are at the floor: a thousand times the larger of the

@@ -1,5 +1,6 @@
 #include "harness/run_case.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -13,11 +14,10 @@ std::optional<std::string> unsettled_series(const std::vector<ClaimResult>& clai
     for (const auto& series : claim.series) {
       if (!series.predicted_order || !series.fit) continue;
       const OrderFit& fit = *series.fit;
-      // At the floor: halving h further cannot show more.
-      bool floor_reached = false;
-      for (const auto& [index, reason] : fit.dropped)
-        floor_reached = floor_reached || (index == static_cast<int>(series.h.size()) - 1 &&
-                                          reason.find("floor") != std::string::npos);
+      // The smallest h left out of the fit is at the floor (the fit drops only leading points as
+      // pre-asymptotic): halving h further cannot show more.
+      const bool floor_reached = fit.sorted.empty() || fit.used.empty() ||
+                                 std::find(fit.used.begin(), fit.used.end(), fit.sorted.back()) == fit.used.end();
       if (floor_reached || !fit.ok) continue;
       const auto& finest = fit.finest_orders;
       const bool steady = finest.size() == 2 && std::isfinite(finest[0]) && std::isfinite(finest[1]) &&

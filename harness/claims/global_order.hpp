@@ -61,7 +61,7 @@ struct GlobalOrderClaim {
     using T = typename System::Scalar;
     constexpr int n = System::dimension;
     ClaimResult claim = claim_result_for(id, source, prediction);
-    const OrderPrediction predicted = context.predict(id, context.map_order());
+    const OrderPrediction predicted = context.predict(id, *theorem_order(context));
     SweepRun<System> run = run_sweep(context, context.scheme);
     State<T, n> final_state = context.exact(context.final_time);
     Vector<T, n> p_exact = momentum(context.system, final_state.q, final_state.w);

@@ -45,7 +45,7 @@ struct LocalOrderClaim {
   static ClaimResult evaluate(const CaseContext<System>& context) {
     using T = typename System::Scalar;
     ClaimResult claim = claim_result_for(id, source, prediction);
-    const OrderPrediction predicted = context.predict(id, context.map_order() + 1);
+    const OrderPrediction predicted = context.predict(id, *theorem_order(context));
     std::vector<T> error;
     for (const T& h : context.steps()) {
       context.report("order: local error at h = " + to_decimal<T>(h));
@@ -87,7 +87,7 @@ struct ContactOrderClaim {
     using T = typename System::Scalar;
     ClaimResult claim = claim_result_for(id, source, prediction);
     const int r = mutual_order(context);
-    const OrderPrediction predicted = context.predict(id, r + 1);
+    const OrderPrediction predicted = context.predict(id, *theorem_order(context));
     std::vector<T> difference;
     for (const T& h : context.steps()) {
       context.report("contact-order at h = " + to_decimal<T>(h));
@@ -267,7 +267,7 @@ struct ExistenceUniquenessClaim {
     using T = typename System::Scalar;
     constexpr int n = System::dimension;
     ClaimResult claim = claim_result_for(id, source, prediction);
-    const OrderPrediction predicted = context.predict(id, 1);
+    const OrderPrediction predicted = context.predict(id, *theorem_order(context));
     // F_h(v) − v over the sweep: order at least 1; at each h the critical point is unique near
     // the diagonal. Here a failed solve is the measured outcome, not bad input.
     std::vector<T> displacement;

@@ -2,6 +2,7 @@
 
 #include "cases/systems.hpp"
 #include "core/del_evolution.hpp"
+#include "tests/core/paper_discrete_lagrangian.hpp"
 #include "tests/test_scalars.hpp"
 
 namespace vivv {
@@ -10,12 +11,7 @@ namespace {
 template <class T>
 class DiscreteLagrangianTest : public testing::ScalarTest<T> {
  protected:
-  static QxQDiscretization<T> paper_discretization(const T& a) {
-    QxQDiscretization<T> d;
-    d.rule = QxQRule::left_rectangle;
-    d.twin = TwinTerm<T>{{a}, 1};
-    return d;
-  }
+  static QxQDiscretization<T> paper_discretization(const T& a) { return testing::paper_discrete_lagrangian(a); }
 };
 TYPED_TEST_SUITE(DiscreteLagrangianTest, testing::Scalars, testing::ScalarNames);
 

@@ -13,6 +13,7 @@
 #include "core/del_evolution.hpp"
 #include "core/jet.hpp"
 #include "core/tq_evolution.hpp"
+#include "tests/core/paper_discrete_lagrangian.hpp"
 #include "tests/test_scalars.hpp"
 
 namespace vivv {
@@ -21,12 +22,7 @@ namespace {
 template <class T>
 class PaperSection2Test : public testing::ScalarTest<T> {
  protected:
-  static QxQDiscretization<T> left_rectangle_twin(const T& a) {
-    QxQDiscretization<T> d;
-    d.rule = QxQRule::left_rectangle;
-    d.twin = TwinTerm<T>{{a}, 1};
-    return d;
-  }
+
   // The example in TQ form (§2.4): linear psi, θ = 0, L_h = h L(q, v) + a h² v.
   static TQDiscretization<T> tq_example(const T& a) {
     TQDiscretization<T> d;
@@ -34,7 +30,7 @@ class PaperSection2Test : public testing::ScalarTest<T> {
     d.theta = 0;
     d.lagrangian = TQLagrangianKind::pullback;
     d.qxq.rule = QxQRule::left_rectangle;
-    d.twin = TwinTerm<T>{{a}, 1};
+    d.twin = testing::paper_discrete_lagrangian(a).twin;
     return d;
   }
   // Pairwise orders log(e_k/e_{k+1}) / log 2 of errors at halving steps.
@@ -67,7 +63,7 @@ TYPED_TEST(PaperSection2Test, PaperSecondDifferenceFormIsOrderOne) {
   for (int j = 4; j <= 9; ++j) {
     const T h = T(1) / (1 << j);
     Vector<T, 1> q_0(q0), q_1(q0 + h * w);
-    auto [q_2, report] = del_step(system, matched_scheme(this->left_rectangle_twin(a)), q_0, q_1, h);
+    auto [q_2, report] = del_step(system, matched_scheme(testing::paper_discrete_lagrangian(a)), q_0, q_1, h);
     ASSERT_TRUE(report.converged) << report.failure;
     const T second_difference = (q_2[0] - 2 * q_1[0] + q_0[0]) / (h * h);
     const T delta = q_1[0] - q_0[0];
