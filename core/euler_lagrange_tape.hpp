@@ -161,6 +161,11 @@ Tape<T> variational_tape(const Tape<T>& base) {
           r = {root, a.tangent / (2 * root)};
           break;
         }
+        case TapeOp::atan: {
+          using std::atan;
+          r = {atan(a.value), a.tangent / b.value};  // b = 1 + a²
+          break;
+        }
         case TapeOp::pow: {
           S p = pow(a.value, c);
           r = {p, c * p / a.value * a.tangent};

@@ -16,6 +16,7 @@
 #include <array>
 #include <cmath>
 #include <type_traits>
+#include <utility>
 
 #include "core/scalar.hpp"
 
@@ -98,7 +99,12 @@ struct Jet {
     for (auto& h : hessian) h *= c;
     return *this;
   }
-  Jet& operator/=(const T& c) { return *this *= T(1 / c); }
+  Jet& operator/=(const T& c) {
+    value /= c;
+    for (auto& g : gradient) g /= c;
+    for (auto& h : hessian) h /= c;
+    return *this;
+  }
   Jet operator-() const {
     Jet r = *this;
     r *= T(-1);
@@ -111,29 +117,46 @@ struct is_jet : std::false_type {};
 template <class T, int N, int Order>
 struct is_jet<Jet<T, N, Order>> : std::true_type {};
 
-// Binary operators between jets, and between a jet and anything that
-// converts to its scalar (T, int).
-#define VIVV_JET_BINARY(op)                                                       \
-  template <class T, int N, int O>                                                \
-  Jet<T, N, O> operator op(Jet<T, N, O> a, const Jet<T, N, O>& b) {               \
-    return a op## = b;                                                            \
-  }                                                                               \
-  template <class T, int N, int O, class U,                                       \
-            std::enable_if_t<std::is_convertible_v<U, T> && !is_jet<U>::value, int> = 0> \
-  Jet<T, N, O> operator op(Jet<T, N, O> a, const U& b) {                          \
-    return a op## = Jet<T, N, O>(T(b));                                           \
-  }                                                                               \
-  template <class T, int N, int O, class U,                                       \
-            std::enable_if_t<std::is_convertible_v<U, T> && !is_jet<U>::value, int> = 0> \
-  Jet<T, N, O> operator op(const U& a, const Jet<T, N, O>& b) {                   \
-    Jet<T, N, O> r{T(a)};                                                         \
-    return r op## = b;                                                            \
+// Binary operators between jets.
+#define VIVV_JET_BINARY(op)                                         \
+  template <class T, int N, int O>                                  \
+  Jet<T, N, O> operator op(Jet<T, N, O> a, const Jet<T, N, O>& b) { \
+    return a op## = b;                                              \
   }
 VIVV_JET_BINARY(+)
 VIVV_JET_BINARY(-)
 VIVV_JET_BINARY(*)
 VIVV_JET_BINARY(/)
 #undef VIVV_JET_BINARY
+
+// Between a jet and a constant c (anything that converts to its scalar: T, int): a constant
+// has no derivatives, so c ± u and c·u act on the value or scale, and c / u is one chain rule.
+template <class T, class U>
+inline constexpr bool is_jet_constant_v = std::is_convertible_v<U, T> && !is_jet<U>::value;
+#define VIVV_JET_CONSTANT template <class T, int N, int O, class U, std::enable_if_t<is_jet_constant_v<T, U>, int> = 0>
+VIVV_JET_CONSTANT Jet<T, N, O> operator+(Jet<T, N, O> a, const U& c) {
+  a.value += T(c);
+  return a;
+}
+VIVV_JET_CONSTANT Jet<T, N, O> operator+(const U& c, Jet<T, N, O> a) { return std::move(a) + c; }
+VIVV_JET_CONSTANT Jet<T, N, O> operator-(Jet<T, N, O> a, const U& c) {
+  a.value -= T(c);
+  return a;
+}
+VIVV_JET_CONSTANT Jet<T, N, O> operator-(const U& c, const Jet<T, N, O>& a) {
+  Jet<T, N, O> r = -a;
+  r.value += T(c);
+  return r;
+}
+VIVV_JET_CONSTANT Jet<T, N, O> operator*(Jet<T, N, O> a, const U& c) { return a *= T(c); }
+VIVV_JET_CONSTANT Jet<T, N, O> operator*(const U& c, Jet<T, N, O> a) { return a *= T(c); }
+VIVV_JET_CONSTANT Jet<T, N, O> operator/(Jet<T, N, O> a, const U& c) { return a /= T(c); }
+// c / u, with (c/u)' = −c/u², (c/u)'' = 2c/u³.
+VIVV_JET_CONSTANT Jet<T, N, O> operator/(const U& c, const Jet<T, N, O>& a) {
+  const T inverse = 1 / a.value, quotient = T(c) * inverse;
+  return a.chain(quotient, -quotient * inverse, 2 * quotient * inverse * inverse);
+}
+#undef VIVV_JET_CONSTANT
 
 // Elementary functions, each by its first and second derivative.
 template <class T, int N, int O>
@@ -165,6 +188,12 @@ Jet<T, N, O> sqrt(const Jet<T, N, O>& u) {
   using std::sqrt;
   T s = sqrt(u.value);
   return u.chain(s, 1 / (2 * s), -1 / (4 * s * s * s));
+}
+template <class T, int N, int O>
+Jet<T, N, O> atan(const Jet<T, N, O>& u) {
+  using std::atan;
+  T inverse = 1 / (1 + u.value * u.value);
+  return u.chain(atan(u.value), inverse, -2 * u.value * inverse * inverse);
 }
 // u^p for a constant exponent p.
 template <class T, int N, int O>

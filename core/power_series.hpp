@@ -175,6 +175,21 @@ PowerSeries<T> sqrt(const PowerSeries<T>& a) {
   return pow(a, T(1) / 2);
 }
 
+// t = atan a: (1 + a²) t' = a', so with d = 1 + a², k d_0 t_k = k a_k − Σ_{j=1..k−1} j t_j d_{k−j}.
+template <class T>
+PowerSeries<T> atan(const PowerSeries<T>& a) {
+  using std::atan;
+  const PowerSeries<T> d = 1 + a * a;
+  PowerSeries<T> t(T(0), a.length());
+  t[0] = atan(a[0]);
+  for (int k = 1; k < a.length(); ++k) {
+    T sum = k * a[k];
+    for (int j = 1; j < k; ++j) sum -= j * t[j] * d[k - j];
+    t[k] = sum / (k * d[0]);
+  }
+  return t;
+}
+
 // s = sin a, c = cos a: s' = c a', c' = −s a'.
 template <class T>
 void sin_cos(const PowerSeries<T>& a, PowerSeries<T>& s, PowerSeries<T>& c) {

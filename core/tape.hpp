@@ -53,6 +53,7 @@ enum class TapeOp : unsigned char {
   log,             // ln a
   sqrt,            // √a
   pow,             // a^c (constant exponent)
+  atan,            // atan a; b is the node 1 + a·a its recurrences divide by
 };
 
 struct TapeNode {
@@ -81,6 +82,12 @@ struct Tape {
   // Evaluates the outputs at x in any scalar S (T, a jet over T, a TapeScalar...).
   template <class S>
   std::vector<S> evaluate(const std::vector<S>& x) const;
+  // The first output at x (`inputs` values from x[0]), in any scalar S.
+  template <class S>
+  S evaluate_first(const S* x) const;
+  // Every node's value at x, into `value` (resized to the tape).
+  template <class S>
+  void run(const S* x, std::vector<S>& value) const;
 
   // Drops the nodes no output depends on (keeping inputs and sin/cos pairs whole).
   void prune();
@@ -325,6 +332,15 @@ VIVV_TAPE_FUNCTION(log)
 VIVV_TAPE_FUNCTION(sqrt)
 #undef VIVV_TAPE_FUNCTION
 
+// atan x, recorded with the node 1 + x² that its derivative 1/(1 + x²) needs.
+template <class T>
+TapeScalar<T> atan(const TapeScalar<T>& x) {
+  using std::atan;
+  if (x.is_constant()) return TapeScalar<T>(T(atan(x.value())));
+  const TapeScalar<T> denominator = 1 + x * x;
+  return tape_detail::make<T>(TapeOp::atan, x.index(), denominator.index());
+}
+
 // x^p: a constant exponent is one node (x^0 = 1, x^1 = x); otherwise e^{p ln x}.
 template <class T>
 TapeScalar<T> pow(const TapeScalar<T>& x, const TapeScalar<T>& p) {
@@ -386,18 +402,17 @@ void Tape<T>::prune() {
 
 template <class T>
 template <class S>
-std::vector<S> Tape<T>::evaluate(const std::vector<S>& x) const {
+void Tape<T>::run(const S* x, std::vector<S>& value) const {
+  using std::atan;
   using std::cos;
   using std::exp;
   using std::log;
-  using std::pow;
   using std::sin;
   using std::sqrt;
-  if (static_cast<int>(x.size()) != inputs)
-    throw std::invalid_argument("Tape::evaluate: expected " + std::to_string(inputs) + " inputs");
-  std::vector<S> value(nodes.size());
+  value.resize(nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const TapeNode& node = nodes[i];
+    // Constants enter as T: a constant operand of a jet has no derivatives to carry.
     switch (node.op) {
       case TapeOp::input: value[i] = x[node.a]; break;
       case TapeOp::constant: value[i] = S(constants[node.c]); break;
@@ -407,21 +422,39 @@ std::vector<S> Tape<T>::evaluate(const std::vector<S>& x) const {
       case TapeOp::mul: value[i] = value[node.a] * value[node.b]; break;
       case TapeOp::square: value[i] = value[node.a] * value[node.a]; break;
       case TapeOp::div: value[i] = value[node.a] / value[node.b]; break;
-      case TapeOp::add_constant: value[i] = value[node.a] + S(constants[node.c]); break;
-      case TapeOp::constant_minus: value[i] = S(constants[node.c]) - value[node.a]; break;
-      case TapeOp::scale: value[i] = S(constants[node.c]) * value[node.a]; break;
-      case TapeOp::constant_div: value[i] = S(constants[node.c]) / value[node.a]; break;
+      case TapeOp::add_constant: value[i] = value[node.a] + constants[node.c]; break;
+      case TapeOp::constant_minus: value[i] = constants[node.c] - value[node.a]; break;
+      case TapeOp::scale: value[i] = constants[node.c] * value[node.a]; break;
+      case TapeOp::constant_div: value[i] = constants[node.c] / value[node.a]; break;
       case TapeOp::sin: value[i] = sin(value[node.a]); break;
       case TapeOp::cos: value[i] = cos(value[node.a]); break;
       case TapeOp::exp: value[i] = exp(value[node.a]); break;
       case TapeOp::log: value[i] = log(value[node.a]); break;
       case TapeOp::sqrt: value[i] = sqrt(value[node.a]); break;
       case TapeOp::pow: value[i] = tape_detail::power(value[node.a], constants[node.c]); break;
+      case TapeOp::atan: value[i] = atan(value[node.a]); break;
     }
   }
+}
+
+template <class T>
+template <class S>
+std::vector<S> Tape<T>::evaluate(const std::vector<S>& x) const {
+  if (static_cast<int>(x.size()) != inputs)
+    throw std::invalid_argument("Tape::evaluate: expected " + std::to_string(inputs) + " inputs");
+  std::vector<S> value;
+  run(x.data(), value);
   std::vector<S> y;
   for (int index : outputs) y.push_back(value[index]);
   return y;
+}
+
+template <class T>
+template <class S>
+S Tape<T>::evaluate_first(const S* x) const {
+  std::vector<S> value;
+  run(x, value);
+  return value[outputs.front()];
 }
 
 }  // namespace vivv

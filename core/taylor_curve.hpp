@@ -197,6 +197,14 @@ std::vector<std::vector<S>> solution_taylor_coefficients(const Tape<T>& tape,
                    ? S(log(u[0]))
                    : S((u[k] - divided(convolution<S, T>(r, u, 1, k - 1, k, true), T(k))) / u[0]);
         return;
+      // t_k = (u_k − (1/k) Σ_{j=1..k−1} j t_j d_{k−j}) / d_0, d = 1 + u² the node b
+      case TapeOp::atan: {
+        using std::atan;
+        r[k] = k == 0
+                   ? S(atan(u[0]))
+                   : S((u[k] - divided(convolution<S, T>(r, w, 1, k - 1, k, true), T(k))) / w[0]);
+        return;
+      }
       // r_k = (u_k − Σ_{j=1..k−1} r_j r_{k−j}) / (2 r_0)
       case TapeOp::sqrt:
         r[k] = k == 0

@@ -432,6 +432,22 @@ void TaylorExpansion<T>::node_coefficient(int index, int k) {
       multiply_adds_ += k + 1;
       return;
     }
+    case TapeOp::atan: {
+      // (1 + u²) t' = u' with d = 1 + u² the node b: the log recurrence with d in the denominator.
+      T* dt = weighted_self(index);
+      if (k == 0) {
+        using std::atan;
+        c[0] = atan(u[0]);
+        return;
+      }
+      set_dot(sum_, dt, w, 1, k - 1, k, scratch_);
+      set_div_int(sum_, sum_, k);
+      set_sub(sum_, u[k], sum_);
+      set_div(c[k], sum_, w[0]);
+      set_mul_int(dt[k], c[k], k);
+      multiply_adds_ += k + 1;
+      return;
+    }
     case TapeOp::sqrt: {
       if (k == 0) {
         c[0] = sqrt(u[0]);

@@ -76,6 +76,14 @@ std::vector<OperationProbe<T>> probes() {
        [half_pi](const T& a, const T& b, int k) { return T(sin(a + k * half_pi) * pow(b, k) / factorial<T>(k)); }},
       {"cos", [](const TapeScalar<T>& x) { return cos(x); },
        [half_pi](const T& a, const T& b, int k) { return T(cos(a + k * half_pi) * pow(b, k) / factorial<T>(k)); }},
+      // atan(a + bt): c_k = (−1)^{k−1} b^k sin(kφ) / (k ρ^k), ρ = √(1 + a²), φ = atan(1/a) (a > 0).
+      {"atan", [](const TapeScalar<T>& x) { return atan(x); },
+       [](const T& a, const T& b, int k) {
+         using std::atan;
+         if (k == 0) return T(atan(a));
+         const T rho = sqrt(1 + a * a), phi = atan(1 / a);
+         return T((k % 2 == 1 ? 1 : -1) * pow(b / rho, k) * sin(k * phi) / k);
+       }},
       {"square", [](const TapeScalar<T>& x) { return x * x; },
        [](const T& a, const T& b, int k) { return k == 0 ? T(a * a) : k == 1 ? T(2 * a * b) : k == 2 ? T(b * b) : T(0); }},
   };

@@ -1,0 +1,142 @@
+#include "cases/formula_parser.hpp"
+
+#include <boost/fusion/include/at_c.hpp>
+#include <boost/spirit/home/x3.hpp>
+
+namespace vivv {
+
+namespace {
+
+namespace x3 = boost::spirit::x3;
+using Kind = FormulaNode::Kind;
+
+// The first character of the formula, for positions (x3::with).
+struct formula_begin;
+
+using Range = boost::iterator_range<const char*>;
+
+// The node for the matched text `range`, at its first character.
+template <class Context>
+FormulaNode leaf(Kind kind, const Range& range, const Context& context) {
+  FormulaNode node;
+  node.kind = kind;
+  node.text.assign(range.begin(), range.end());
+  node.position = static_cast<int>(range.begin() - x3::get<formula_begin>(context));
+  return node;
+}
+
+FormulaNode operation(Kind kind, std::string text, int position) {
+  FormulaNode node;
+  node.kind = kind;
+  node.text = std::move(text);
+  node.position = position;
+  return node;
+}
+
+// Semantic actions: each builds a node from what its parser matched.
+const auto take = [](auto& context) { x3::_val(context) = std::move(x3::_attr(context)); };
+const auto make_number = [](auto& context) {
+  x3::_val(context) = leaf(Kind::number, x3::_attr(context), context);
+};
+const auto make_name = [](auto& context) {
+  x3::_val(context) = leaf(Kind::name, x3::_attr(context), context);
+};
+const auto make_call = [](auto& context) {
+  auto& matched = x3::_attr(context);
+  FormulaNode node = leaf(Kind::call, boost::fusion::at_c<0>(matched), context);
+  node.operands = std::move(boost::fusion::at_c<1>(matched));
+  x3::_val(context) = std::move(node);
+};
+const auto make_component = [](auto& context) {
+  auto& matched = x3::_attr(context);
+  FormulaNode node = leaf(Kind::component, boost::fusion::at_c<0>(matched), context);
+  node.component = static_cast<int>(std::min<unsigned>(boost::fusion::at_c<1>(matched), 1u << 20));
+  x3::_val(context) = std::move(node);
+};
+const auto make_negate = [](auto& context) {
+  FormulaNode node = operation(Kind::negate, "-", x3::_attr(context).position);
+  node.operands.push_back(std::move(x3::_attr(context)));
+  x3::_val(context) = std::move(node);
+};
+// Folds `left op right` into the node built so far (left-associative chains and ^).
+const auto fold = [](auto& context) {
+  auto& matched = x3::_attr(context);
+  const Range& symbol = boost::fusion::at_c<0>(matched);
+  const char op = *symbol.begin();
+  FormulaNode node = operation(op == '+'   ? Kind::add
+                          : op == '-' ? Kind::subtract
+                          : op == '*' ? Kind::multiply
+                          : op == '/' ? Kind::divide
+                                      : Kind::power,
+                          std::string(1, op), static_cast<int>(symbol.begin() - x3::get<formula_begin>(context)));
+  node.operands.push_back(std::move(x3::_val(context)));
+  node.operands.push_back(std::move(boost::fusion::at_c<1>(matched)));
+  x3::_val(context) = std::move(node);
+};
+
+const x3::rule<class expression_rule, FormulaNode> expression = "an expression";
+const x3::rule<class term_rule, FormulaNode> term = "a term";
+const x3::rule<class unary_rule, FormulaNode> unary = "a number, a name, '-' or '('";
+const x3::rule<class power_rule, FormulaNode> power = "a power";
+const x3::rule<class primary_rule, FormulaNode> primary = "a number, a name or '('";
+const x3::rule<class number_rule, Range> number = "a number";
+const x3::rule<class identifier_rule, Range> identifier = "a name";
+const x3::rule<class additive_rule, Range> additive = "'+' or '-'";
+const x3::rule<class multiplicative_rule, Range> multiplicative = "'*' or '/'";
+const x3::rule<class caret_rule, Range> caret = "'^'";
+const x3::rule<class arguments_rule, std::vector<FormulaNode>> arguments = "arguments";
+
+const auto number_def =
+    x3::lexeme[x3::raw[+x3::digit >> -('.' >> +x3::digit) >> -(x3::char_("eE") >> -x3::char_("+-") >> +x3::digit)]];
+const auto identifier_def = x3::lexeme[x3::raw[x3::alpha >> *(x3::alnum | '_')]];
+const auto additive_def = x3::raw[x3::char_("+-")];
+const auto multiplicative_def = x3::raw[x3::char_("*/")];
+const auto caret_def = x3::raw[x3::lit('^')];
+const auto arguments_def = expression % ',';
+const auto primary_def = number[make_number] |
+                         (identifier >> '(' > arguments > ')')[make_call] |
+                         (identifier >> '[' > x3::uint_ > ']')[make_component] |
+                         identifier[make_name] |
+                         ('(' > expression > ')')[take];
+const auto power_def = primary[take] >> -(caret > unary)[fold];
+const auto unary_def = ('-' > unary)[make_negate] | power[take];
+const auto term_def = unary[take] >> *(multiplicative > unary)[fold];
+const auto expression_def = term[take] >> *(additive > term)[fold];
+
+BOOST_SPIRIT_DEFINE(expression, term, unary, power, primary, number, identifier, additive, multiplicative, caret,
+                    arguments)
+
+// X3 names a literal as '\'c\''; the messages quote it as 'c'.
+std::string readable(std::string which) {
+  if (which.size() == 4 && which.front() == '\'' && which[1] == '\\') return "'" + which.substr(2, 1) + "'";
+  if (which.find("uint_parser") != std::string::npos) return "a component index (1, 2, …)";
+  return which;
+}
+
+}  // namespace
+
+FormulaNode parse_formula(const std::string& text) {
+  const char* const begin = text.data();
+  const char* first = begin;
+  const char* const last = begin + text.size();
+  FormulaNode tree;
+  bool parsed = false;
+  try {
+    parsed = x3::phrase_parse(first, last, x3::with<formula_begin>(begin)[expression], x3::space, tree);
+  } catch (const x3::expectation_failure<const char*>& failure) {
+    throw FormulaError(static_cast<int>(failure.where() - begin), "expected " + readable(failure.which()));
+  }
+  if (!parsed) throw FormulaError(static_cast<int>(first - begin), "expected a number, a name, '-' or '('");
+  if (first != last)
+    throw FormulaError(static_cast<int>(first - begin),
+                       "expected an operator (+ - * / ^), ')' or the end of the formula");
+  return tree;
+}
+
+std::string describe_formula_error(const std::string& text, const FormulaError& error) {
+  constexpr std::size_t shown = 60;
+  std::string excerpt = text.size() <= shown ? text : text.substr(0, shown) + "…";
+  return "at character " + std::to_string(error.position + 1) + " of \"" + excerpt + "\": " + error.what();
+}
+
+}  // namespace vivv

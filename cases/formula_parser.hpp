@@ -1,0 +1,28 @@
+// Reading a formula's text into its syntax tree (core/formula.hpp), with
+// Boost.Spirit X3. The grammar, loosest binding first:
+//
+//   expression = term (("+" | "-") term)*
+//   term       = unary (("*" | "/") unary)*
+//   unary      = "-" unary | power
+//   power      = primary ("^" unary)?          (right-associative: 2^3^2 = 2^9)
+//   primary    = number | name "(" expression ("," expression)* ")"
+//              | name "[" integer "]" | name | "(" expression ")"
+//
+// Numbers are decimals ("0.1", "2", "1.5e-3") kept as text; names are
+// letters, digits and "_", starting with a letter. Spaces are ignored.
+#pragma once
+
+#include <string>
+
+#include "core/formula.hpp"
+
+namespace vivv {
+
+// The syntax tree of `text`; FormulaError at the first character that does
+// not fit the grammar, saying what was expected there.
+FormulaNode parse_formula(const std::string& text);
+
+// "at character 13 of \"(x + y\": expected ')'" — for error messages (positions count from 1).
+std::string describe_formula_error(const std::string& text, const FormulaError& error);
+
+}  // namespace vivv

@@ -1,0 +1,83 @@
+// A Lagrangian system written as a formula in a case file (docs/case-files.md):
+//
+//   "system": {"name": "henon-heiles", "lagrangian": "(vx^2 + vy^2)/2 - ...",
+//              "coordinates": ["x", "y"], "velocities": ["vx", "vy"], "params": {...}}
+//
+// The formula's tree is recorded once in T as a straight-line program over
+// (q_1 … q_n, w_1 … w_n) (core/tape.hpp; parameters and pi become constants
+// in T), and L(q, w) runs that program in whatever scalar S core/ asks for:
+// T, jets, the Taylor tape, power series. So a formula system is a
+// LagrangianSystem like any in the catalogue.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/formula.hpp"
+#include "core/lagrangian.hpp"
+#include "core/tape.hpp"
+
+namespace vivv {
+
+// The names a system formula is written in; parameter values are decimals, parsed in T.
+struct FormulaSystemDefinition {
+  std::string name;
+  std::string text;  // the formula as written
+  FormulaNode lagrangian;
+  std::vector<std::string> coordinates, velocities;
+  std::vector<std::pair<std::string, std::string>> parameters;
+};
+
+template <class T, int n>
+struct FormulaSystem {
+  using Scalar = T;
+  static constexpr int dimension = n;
+  std::shared_ptr<const Tape<T>> program;  // inputs q_1 … q_n, w_1 … w_n; one output, L
+
+  // L(q, w): the recorded program run in S.
+  template <class S>
+  S lagrangian(const Point<S, n>& q, const Point<S, n>& w) const {
+    std::array<S, 2 * n> x;
+    for (int i = 0; i < n; ++i) x[i] = q[i], x[n + i] = w[i];
+    return program->evaluate_first(x.data());
+  }
+};
+
+// The scope of a system formula in V: coordinates and velocities from `q`, `w`, parameters in T.
+template <class T, class V>
+FormulaScope<T, V> system_formula_scope(const FormulaSystemDefinition& definition, const std::vector<V>& q,
+                                        const std::vector<V>& w) {
+  FormulaScope<T, V> scope;
+  for (std::size_t i = 0; i < definition.coordinates.size(); ++i) {
+    scope.names[definition.coordinates[i]] = FormulaValue<V>::scalar(q[i], false);
+    scope.names[definition.velocities[i]] = FormulaValue<V>::scalar(w[i], false);
+  }
+  for (const auto& [name, value] : definition.parameters)
+    scope.names[name] = FormulaValue<V>::scalar(V(from_decimal<T>(value)), true);
+  return scope;
+}
+
+// Records the formula of `definition` (dimension n) in T. Throws FormulaError for
+// a formula that has no meaning (unknown names, vectors, non-constant exponents).
+template <class T, int n>
+FormulaSystem<T, n> make_formula_system(const FormulaSystemDefinition& definition) {
+  TapeRecording<T> recording(2 * n);
+  std::vector<TapeScalar<T>> q, w;
+  for (int i = 0; i < n; ++i) q.push_back(recording.input(i)), w.push_back(recording.input(n + i));
+  const auto scope = system_formula_scope<T>(definition, q, w);
+  const FormulaValue<TapeScalar<T>> value = interpret(definition.lagrangian, scope);
+  FormulaSystem<T, n> system;
+  system.program = std::make_shared<const Tape<T>>(recording.finish({value.components[0]}));
+  return system;
+}
+
+// L at (q, w) evaluated from the tree in T, naming the first sqrt, log, power or
+// quotient whose argument is outside its domain there (FormulaError).
+template <class T>
+T check_formula_domain(const FormulaSystemDefinition& definition, const std::vector<T>& q, const std::vector<T>& w) {
+  return interpret(definition.lagrangian, system_formula_scope<T>(definition, q, w)).components[0];
+}
+
+}  // namespace vivv
