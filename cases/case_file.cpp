@@ -9,7 +9,9 @@
 #include <sstream>
 
 #include "cases/catalogue.hpp"
+#include "cases/formula_parser.hpp"
 #include "core/discrete_lagrangian.hpp"
+#include "core/formula_system.hpp"
 
 namespace vivv {
 
@@ -179,7 +181,57 @@ class Reader {
   std::set<std::string> known_;
 };
 
-DiscretizationSpec read_discretization(Reader reader, int dimension, bool allow_tq = true) {
+// The longest formula a case file may write.
+constexpr std::size_t longest_formula = 20000;
+
+// A name a formula may use for a coordinate, velocity or parameter.
+bool is_formula_name(const std::string& name) {
+  static const std::regex pattern(R"([A-Za-z][A-Za-z0-9_]{0,31})");
+  return std::regex_match(name, pattern);
+}
+
+// The formula at `key`, parsed; a CaseError names the field, the character and what was expected.
+std::shared_ptr<const FormulaNode> read_formula(Reader& reader, const std::string& key, std::string& text) {
+  text = reader.string(key);
+  if (text.size() > longest_formula)
+    reader.fail(key, "expected a formula of at most " + std::to_string(longest_formula) + " characters, got " +
+                         std::to_string(text.size()));
+  try {
+    return std::make_shared<const FormulaNode>(parse_formula(text));
+  } catch (const FormulaError& error) {
+    reader.fail(key, describe_formula_error(text, error));
+  }
+}
+
+// What a discrete Lagrangian formula means, checked by recording it in long double: qb and qe
+// are vectors of `dimension` components, h a scalar, the parameters constants, and L(x, v)
+// stands for the system's Lagrangian.
+void check_expression(const FormulaNode& tree, int dimension,
+                      const std::vector<std::pair<std::string, std::string>>& parameters) {
+  using T = long double;
+  using V = TapeScalar<T>;
+  TapeRecording<T> recording(2 * dimension + 1);
+  FormulaScope<T, V> scope;
+  FormulaValue<V> qb{{}, true, false}, qe{{}, true, false};
+  for (int i = 0; i < dimension; ++i)
+    qb.components.push_back(recording.input(i)), qe.components.push_back(recording.input(dimension + i));
+  scope.names["qb"] = qb;
+  scope.names["qe"] = qe;
+  scope.names["h"] = FormulaValue<V>::scalar(recording.input(2 * dimension), false);
+  for (const auto& [name, value] : parameters) scope.names[name] = FormulaValue<V>::scalar(V(from_decimal<T>(value)), true);
+  scope.dimension = dimension;
+  scope.lagrangian = [](const std::vector<V>& x, const std::vector<V>& v) {
+    V sum = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) sum = sum + x[i] * v[i];
+    return sum;
+  };
+  const FormulaValue<V> value = interpret(tree, scope);
+  if (value.is_vector) throw FormulaError(tree.position, "expected L_d to be a scalar, got a vector");
+}
+
+DiscretizationSpec read_discretization(Reader reader, int dimension,
+                                       const std::vector<std::pair<std::string, std::string>>& parameters,
+                                       bool allow_tq = true) {
   DiscretizationSpec spec;
   if (reader.has("formalism"))
     spec.formalism = reader.one_of("formalism", allow_tq ? std::vector<std::string>{"qxq", "tq"}
@@ -197,13 +249,23 @@ DiscretizationSpec read_discretization(Reader reader, int dimension, bool allow_
                                     tq.psi + "\"");
     if (tq.lagrangian == "quadrature") tq.nodes = reader.integer("nodes", 1, 64);
     if (tq.lagrangian == "pullback")
-      tq.qxq = std::make_shared<DiscretizationSpec>(read_discretization(reader.object("qxq"), dimension, false));
+      tq.qxq = std::make_shared<DiscretizationSpec>(
+          read_discretization(reader.object("qxq"), dimension, parameters, false));
     spec.tq = tq;
   } else {
     spec.kind = reader.one_of("kind", rule_names());
     QxQRule rule = *rule_from_name(spec.kind);
     if (rule == QxQRule::alpha) spec.parameter = reader.decimal("alpha");
     if (rule == QxQRule::weighted) spec.parameter = reader.decimal("beta");
+    if (rule == QxQRule::expression) {
+      spec.expression_tree = read_formula(reader, "L_d", spec.expression);
+      try {
+        check_expression(*spec.expression_tree, dimension, parameters);
+      } catch (const FormulaError& error) {
+        reader.fail("L_d", describe_formula_error(spec.expression, error));
+      }
+      spec.declared_order = reader.integer("order", 1, 64);
+    }
   }
   if (reader.has("twin")) {
     Reader twin = reader.object("twin");
@@ -212,6 +274,118 @@ DiscretizationSpec read_discretization(Reader reader, int dimension, bool allow_
   }
   reader.finish();
   return spec;
+}
+
+// "system": {"name", "lagrangian", "coordinates", "velocities", "params"}: a system as a formula.
+void read_formula_system(Reader& system, CaseSpec& spec) {
+  spec.system = system.string("name");
+  const auto catalogue = system_names();
+  if (std::find(catalogue.begin(), catalogue.end(), spec.system) != catalogue.end())
+    system.fail("name", "'" + spec.system + "' is a catalogue system; a system given by its lagrangian needs a "
+                        "name of its own");
+  if (!is_formula_name(spec.system) && !std::regex_match(spec.system, std::regex(R"([A-Za-z][A-Za-z0-9_.-]{0,63})")))
+    system.fail("name", "expected a name of letters, digits, '_', '-' and '.', starting with a letter, got \"" +
+                            echo(spec.system) + "\"");
+  auto definition = std::make_shared<FormulaSystemDefinition>();
+  definition->name = spec.system;
+  definition->coordinates = system.strings("coordinates");
+  definition->velocities = system.strings("velocities");
+  const std::size_t n = definition->coordinates.size();
+  if (n < 1 || n > 4) system.fail("coordinates", "expected 1 to 4 coordinate names, got " + std::to_string(n));
+  if (definition->velocities.size() != n)
+    system.fail("velocities", "expected " + std::to_string(n) + " velocity names, one per coordinate, got " +
+                                  std::to_string(definition->velocities.size()));
+  // Every name once, in one role, and not one the grammar reserves.
+  std::map<std::string, std::string> role;
+  auto claim_name = [&](const std::string& name, const std::string& field, const std::string& what) {
+    if (!is_formula_name(name))
+      throw CaseError(system.file(), field, "expected a name of letters, digits and '_' starting with a letter "
+                                            "(at most 32 characters), got \"" + echo(name) + "\"");
+    if (is_reserved_formula_name(name) || name == "qb" || name == "qe" || name == "h")
+      throw CaseError(system.file(), field, "'" + name + "' is reserved (functions, pi, L, qb, qe, h)");
+    if (role.count(name))
+      throw CaseError(system.file(), field, "'" + name + "' is used both as " + role[name] + " and as " + what);
+    role[name] = what;
+  };
+  for (std::size_t i = 0; i < n; ++i)
+    claim_name(definition->coordinates[i], system.field("coordinates") + "[" + std::to_string(i) + "]",
+               "a coordinate");
+  for (std::size_t i = 0; i < n; ++i)
+    claim_name(definition->velocities[i], system.field("velocities") + "[" + std::to_string(i) + "]",
+               "a velocity");
+  if (system.has("params")) {
+    const auto& params = system.get("params");
+    if (!params.is_object()) system.fail("params", "expected an object of name: decimal string, got " + echo(params));
+    Reader values = system.object("params");
+    for (const auto& [name, value] : params.items()) {
+      claim_name(name, system.field("params") + "." + name, "a parameter");
+      spec.parameters.emplace_back(name, values.decimal(name));
+    }
+    values.finish();
+  }
+  definition->parameters = spec.parameters;
+  std::string text;
+  definition->lagrangian = *read_formula(system, "lagrangian", text);
+  definition->text = text;
+  spec.dimension = static_cast<int>(n);
+  try {
+    switch (n) {
+      case 1: make_formula_system<long double, 1>(*definition); break;
+      case 2: make_formula_system<long double, 2>(*definition); break;
+      case 3: make_formula_system<long double, 3>(*definition); break;
+      default: make_formula_system<long double, 4>(*definition); break;
+    }
+  } catch (const FormulaError& error) {
+    system.fail("lagrangian", describe_formula_error(text, error));
+  }
+  spec.formula = std::move(definition);
+}
+
+// d²L/dw² of `system` at (q, w), or a CaseError naming the field when it is singular there.
+template <class System>
+void check_regular(const System& system, const CaseSpec& spec, const std::string& file) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  Vector<T, n> q, w;
+  for (int i = 0; i < n; ++i) q[i] = from_decimal<T>(spec.q[i]), w[i] = from_decimal<T>(spec.w[i]);
+  const auto d = lagrangian_derivatives(system, q, w);
+  const std::string field = spec.formula ? "system.lagrangian" : "initial";
+  using std::isfinite;
+  if (!isfinite(d.value))
+    throw CaseError(file, field, "L is not finite at the initial state: the state is outside the Lagrangian's domain");
+  const T determinant = d.d2L_dw2.determinant();
+  const T scale = d.d2L_dw2.cwiseAbs().maxCoeff();
+  Eigen::FullPivLU<Matrix<T, n, n>> lu(d.d2L_dw2);
+  lu.setThreshold(1024 * epsilon<T>());
+  if (!isfinite(determinant) || !(scale > 0) || !lu.isInvertible())
+    throw CaseError(file, field, "the Lagrangian is not regular at the initial state: det d2L/dw2 = " +
+                                     to_decimal<T>(determinant) + " (d2L/dw2 is singular there, so the "
+                                     "Euler–Lagrange equations do not determine the acceleration)");
+}
+
+// The initial state in the formula's domain (sqrt, log, powers, quotients) and the Lagrangian
+// regular there, checked in long double before any work.
+void check_initial_state(const CaseSpec& spec, const std::string& file) {
+  using T = long double;
+  std::vector<T> q, w;
+  for (int i = 0; i < spec.dimension; ++i) q.push_back(from_decimal<T>(spec.q[i])), w.push_back(from_decimal<T>(spec.w[i]));
+  if (spec.formula) {
+    try {
+      check_formula_domain<T>(*spec.formula, q, w);
+    } catch (const FormulaError& error) {
+      throw CaseError(file, "system.lagrangian", describe_formula_error(spec.formula->text, error));
+    }
+    switch (spec.dimension) {
+      case 1: check_regular(make_formula_system<T, 1>(*spec.formula), spec, file); break;
+      case 2: check_regular(make_formula_system<T, 2>(*spec.formula), spec, file); break;
+      case 3: check_regular(make_formula_system<T, 3>(*spec.formula), spec, file); break;
+      default: check_regular(make_formula_system<T, 4>(*spec.formula), spec, file); break;
+    }
+    return;
+  }
+  std::vector<std::string> parameters;
+  for (const auto& [name, value] : spec.parameters) parameters.push_back(value);
+  visit_system<T>(spec.system, parameters, [&](const auto& system) { check_regular(system, spec, file); });
 }
 
 }  // namespace
@@ -228,27 +402,33 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
                         "control characters");
 
   Reader system = reader.object("system");
-  spec.system = system.one_of("name", system_names());
-  SystemInfo info;
-  for (const auto& candidate : system_catalogue())
-    if (candidate.name == spec.system) info = candidate;
-  std::map<std::string, std::string> given;
-  if (system.has("params")) {
-    Reader params = system.object("params");
+  if (system.has("lagrangian")) {
+    read_formula_system(system, spec);
+  } else {
+    spec.system = system.one_of("name", system_names());
+    SystemInfo info;
+    for (const auto& candidate : system_catalogue())
+      if (candidate.name == spec.system) info = candidate;
+    spec.dimension = info.dimension;
+    std::map<std::string, std::string> given;
+    if (system.has("params")) {
+      Reader params = system.object("params");
+      for (const auto& parameter : info.parameters)
+        if (params.has(parameter.name)) given[parameter.name] = params.decimal(parameter.name);
+      params.finish();
+    }
     for (const auto& parameter : info.parameters)
-      if (params.has(parameter.name)) given[parameter.name] = params.decimal(parameter.name);
-    params.finish();
+      spec.parameters.emplace_back(parameter.name, given.count(parameter.name)
+                                                       ? given[parameter.name]
+                                                       : parameter.default_value);
   }
-  for (const auto& parameter : info.parameters)
-    spec.parameters.emplace_back(parameter.name, given.count(parameter.name)
-                                                     ? given[parameter.name]
-                                                     : parameter.default_value);
   system.finish();
 
   Reader initial = reader.object("initial");
-  spec.q = initial.decimals("q", info.dimension);
-  spec.w = initial.decimals("w", info.dimension);
+  spec.q = initial.decimals("q", spec.dimension);
+  spec.w = initial.decimals("w", spec.dimension);
   initial.finish();
+  check_initial_state(spec, file);
 
   spec.final_time = reader.decimal("T");
   if (spec.final_time.front() == '-' || !(*decimal_value_of(spec.final_time) > 0))
@@ -267,13 +447,13 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   }
 
   if (reader.has("digits")) spec.digits = reader.integer("digits", 20, 2000);
-  spec.discretization = read_discretization(reader.object("discretization"), info.dimension);
+  spec.discretization = read_discretization(reader.object("discretization"), spec.dimension, spec.parameters);
   if (reader.has("past_discretization"))
     spec.past_discretization =
-        read_discretization(reader.object("past_discretization"), info.dimension);
+        read_discretization(reader.object("past_discretization"), spec.dimension, spec.parameters);
   if (reader.has("compare_discretization"))
     spec.compare_discretization =
-        read_discretization(reader.object("compare_discretization"), info.dimension);
+        read_discretization(reader.object("compare_discretization"), spec.dimension, spec.parameters);
   if (reader.has("start")) spec.start = reader.one_of("start", {"reference", "momentum"});
   if (reader.has("order_tolerance")) {
     spec.order_tolerance = reader.decimal("order_tolerance");

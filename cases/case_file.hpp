@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "core/formula_system.hpp"
+
 namespace vivv {
 
 // The order tolerance when a case gives none, and the largest it may give: a
@@ -53,6 +55,11 @@ struct DiscretizationSpec {
   std::string formalism = "qxq";         // "qxq" or "tq"
   std::string kind;                      // a Q×Q rule name (core/discrete_lagrangian.hpp)
   std::optional<std::string> parameter;  // "alpha" or "beta", for the rules that take one
+  // kind "expression": L_d as a formula in qb, qe, h, L(x, v) and the system's parameters, and
+  // the order its author claims for it.
+  std::string expression;
+  std::shared_ptr<const FormulaNode> expression_tree;
+  int declared_order = 0;
   std::optional<TwinSpec> twin;
   std::optional<TQSpec> tq;              // formalism "tq"
 };
@@ -61,7 +68,10 @@ struct CaseSpec {
   std::string file;
   nlohmann::json source;  // the case file as read, for the report
   std::string name;
-  std::string system;
+  std::string system;  // a catalogue name, or the name a formula system is given
+  int dimension = 1;
+  // A system written as a formula (its parameters are `parameters`); empty for the catalogue's.
+  std::shared_ptr<const FormulaSystemDefinition> formula;
   std::vector<std::pair<std::string, std::string>> parameters;  // every parameter, defaults filled in
   std::vector<std::string> q, w;
   std::string final_time;  // "T"

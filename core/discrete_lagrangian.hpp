@@ -7,6 +7,8 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -14,6 +16,7 @@
 
 #include "core/jet.hpp"
 #include "core/lagrangian.hpp"
+#include "core/tape.hpp"
 
 namespace vivv {
 
@@ -24,12 +27,13 @@ enum class QxQRule {
   trapezoid,        // h/2·[L(q_b, Δ/h) + L(q_e, Δ/h)]
   alpha,            // h·L((1 − α) q_b + α q_e, Δ/h)
   weighted,         // h·[(1 − β) L(q_b, Δ/h) + β L(q_e, Δ/h)]  (β = 1/2 is the trapezoid)
+  expression,       // a formula in qb, qe, h and L(x, v), with the order its author claims
 };
 
 // Rule names as written in case files and reports, in the order of QxQRule.
 inline const std::vector<std::string>& rule_names() {
-  static const std::vector<std::string> names = {"left-rectangle", "right-rectangle", "midpoint",
-                                                 "trapezoid",      "alpha",           "weighted"};
+  static const std::vector<std::string> names = {"left-rectangle", "right-rectangle", "midpoint", "trapezoid",
+                                                 "alpha",          "weighted",        "expression"};
   return names;
 }
 inline std::string rule_name(QxQRule rule) { return rule_names()[static_cast<int>(rule)]; }
@@ -62,10 +66,18 @@ struct QxQDiscretization {
   QxQRule rule = QxQRule::midpoint;
   T parameter = T(1) / 2;  // α for `alpha`, β for `weighted`
   std::optional<TwinTerm<T>> twin;
+  // `expression`: L_d recorded over (q_b, q_e, h) (core/formula_discretization.hpp), the
+  // formula as written, and the order its author declares.
+  std::shared_ptr<const Tape<T>> expression;
+  std::string formula;
+  int declared_order = 0;
 
-  // Order of the rule alone: 2 for the symmetric rules, 1 otherwise (MW Def. 2.3.1).
+  // Order of the rule alone: 2 for the symmetric rules, 1 otherwise (MW Def. 2.3.1); for a
+  // formula, the order its author claims (the prediction every order claim then checks).
   int rule_order() const {
     switch (rule) {
+      case QxQRule::expression:
+        return declared_order;
       case QxQRule::midpoint:
       case QxQRule::trapezoid:
         return 2;
@@ -86,11 +98,24 @@ struct QxQDiscretization {
   }
 };
 
+// Whether two discretizations are the same rule (twin terms aside).
+template <class T>
+bool same_rule(const QxQDiscretization<T>& a, const QxQDiscretization<T>& b) {
+  if (a.rule != b.rule) return false;
+  if (a.rule == QxQRule::expression) return a.formula == b.formula;
+  return a.rule != QxQRule::alpha && a.rule != QxQRule::weighted ? true : a.parameter == b.parameter;
+}
+
 // The same discretization without its twin term.
 template <class T>
-QxQDiscretization<T> without_twin(QxQDiscretization<T> d) {
-  d.twin.reset();
-  return d;
+QxQDiscretization<T> without_twin(const QxQDiscretization<T>& d) {
+  QxQDiscretization<T> plain;
+  plain.rule = d.rule;
+  plain.parameter = d.parameter;
+  plain.expression = d.expression;
+  plain.formula = d.formula;
+  plain.declared_order = d.declared_order;
+  return plain;
 }
 
 // L_d(q_b, q_e; h) evaluated in S (T or a jet over T).
@@ -128,6 +153,13 @@ S discrete_lagrangian(const System& system,
     case QxQRule::weighted:
       value = h * ((1 - c) * system.lagrangian(q_b, velocity) + c * system.lagrangian(q_e, velocity));
       break;
+    case QxQRule::expression: {
+      std::array<S, 2 * n + 1> x;
+      for (int i = 0; i < n; ++i) x[i] = q_b[i], x[n + i] = q_e[i];
+      x[2 * n] = S(h);
+      value = discretization.expression->evaluate_first(x.data());
+      break;
+    }
   }
   if (discretization.twin) {
     using std::pow;

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -96,7 +97,10 @@ void check_domain(const std::string& function, const V& x, int position) {
                      (function == "divide" && x == 0) || !isfinite(x);
     if (!bad) return;
     const std::string what = function == "power" ? "a non-integer power of" : function == "divide" ? "a division by" : function + " of";
-    throw FormulaError(position, what + " " + to_decimal<T>(x) + " at the initial state: the state is outside the "
+    std::ostringstream value;  // six digits say where the state is; the case file has the rest
+    value.precision(6);
+    value << x;
+    throw FormulaError(position, what + " " + value.str() + " at the initial state: the state is outside the "
                                         "formula's domain");
   }
 }
@@ -263,7 +267,7 @@ FormulaValue<V> interpret(const FormulaNode& node, const FormulaScope<T, V>& sco
                                               (scope.lagrangian ? ", L" : ""));
       }
       Value x = scalar_of(node.operands[0], "argument");
-      return Value::scalar(formula_detail::apply_function<T>(node.text, x.components[0], node.operands[0].position),
+      return Value::scalar(formula_detail::apply_function<T>(node.text, x.components[0], node.position),
                            x.is_constant);
     }
   }

@@ -195,13 +195,13 @@ Jet<T, N, O> atan(const Jet<T, N, O>& u) {
   T inverse = 1 / (1 + u.value * u.value);
   return u.chain(atan(u.value), inverse, -2 * u.value * inverse * inverse);
 }
-// u^p for a constant exponent p.
-template <class T, int N, int O>
-Jet<T, N, O> pow(const Jet<T, N, O>& u, const T& p) {
+// u^p for a constant exponent p (in T, or in the scalar under nested jets).
+template <class T, int N, int O, class P, std::enable_if_t<!is_jet<P>::value || std::is_same_v<P, T>, int> = 0>
+Jet<T, N, O> pow(const Jet<T, N, O>& u, const P& p) {
   using std::pow;
   T f0 = pow(u.value, p);
-  T f1 = p * pow(u.value, p - 1);
-  T f2 = p * (p - 1) * pow(u.value, p - 2);
+  T f1 = p * pow(u.value, P(p - 1));
+  T f2 = p * (p - 1) * pow(u.value, P(p - 2));
   return u.chain(f0, f1, f2);
 }
 

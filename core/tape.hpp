@@ -231,11 +231,7 @@ TapeScalar<T> scaled(const TapeScalar<T>& x, const T& c) {
 template <class S, class T>
 S power(const S& x, const T& c) {
   using std::pow;
-  if constexpr (is_jet<S>::value) {
-    return pow(x, decltype(x.value)(c));
-  } else {
-    return pow(x, S(c));
-  }
+  return pow(x, c);
 }
 
 }  // namespace tape_detail

@@ -13,6 +13,7 @@
 #include "cases/case_file.hpp"
 #include "core/del_evolution.hpp"
 #include "core/euler_lagrange_tape.hpp"
+#include "core/formula_discretization.hpp"
 #include "core/state.hpp"
 #include "core/tq_evolution.hpp"
 #include "references/gauss_legendre.hpp"
@@ -23,27 +24,39 @@
 
 namespace vivv {
 
-// The Q×Q discretization a case file describes, in scalar T.
+// The twin term a case file describes, in scalar T.
+template <class T>
+std::optional<TwinTerm<T>> make_twin(const std::optional<TwinSpec>& spec) {
+  if (!spec) return std::nullopt;
+  TwinTerm<T> twin;
+  for (const auto& a : spec->a) twin.a.push_back(from_decimal<T>(a));
+  twin.power = spec->power;
+  return twin;
+}
+
+// The Q×Q discretization a case file describes, in scalar T (a formula's needs its system:
+// the overload below). Of a TQ discretization, only the twin term is shared.
 template <class T>
 QxQDiscretization<T> make_discretization(const DiscretizationSpec& spec) {
   QxQDiscretization<T> d;
-  if (spec.formalism != "qxq") {
-    if (spec.twin) {  // only the twin term is shared with TQ discretizations
-      TwinTerm<T> twin;
-      for (const auto& a : spec.twin->a) twin.a.push_back(from_decimal<T>(a));
-      twin.power = spec.twin->power;
-      d.twin = twin;
-    }
-    return d;
-  }
+  d.twin = make_twin<T>(spec.twin);
+  if (spec.formalism != "qxq") return d;
   d.rule = *rule_from_name(spec.kind);
   if (spec.parameter) d.parameter = from_decimal<T>(*spec.parameter);
-  if (spec.twin) {
-    TwinTerm<T> twin;
-    for (const auto& a : spec.twin->a) twin.a.push_back(from_decimal<T>(a));
-    twin.power = spec.twin->power;
-    d.twin = twin;
-  }
+  return d;
+}
+
+// The Q×Q discretization a case file describes for `system`; a formula L_d is recorded with
+// the system's L and the case's parameters.
+template <LagrangianSystem System>
+QxQDiscretization<typename System::Scalar> make_discretization(
+    const DiscretizationSpec& spec, const System& system,
+    const std::vector<std::pair<std::string, std::string>>& parameters) {
+  using T = typename System::Scalar;
+  if (spec.formalism != "qxq" || spec.kind != "expression") return make_discretization<T>(spec);
+  QxQDiscretization<T> d =
+      expression_discretization(system, spec.expression, *spec.expression_tree, parameters, spec.declared_order);
+  d.twin = make_twin<T>(spec.twin);
   return d;
 }
 
@@ -82,7 +95,7 @@ TQDiscretization<T> make_tq_discretization(const DiscretizationSpec& spec, const
     d.lagrangian = TQLagrangianKind::pullback;
     d.qxq = make_discretization<T>(*tq.qxq);
   }
-  if (spec.twin) d.twin = make_discretization<T>(spec).twin;
+  d.twin = make_twin<T>(spec.twin);
   return d;
 }
 
@@ -90,8 +103,10 @@ TQDiscretization<T> make_tq_discretization(const DiscretizationSpec& spec, const
 // Euler–Lagrange tape a(q, w) of its L recorded for a taylor psi.
 template <LagrangianSystem System>
 TQDiscretization<typename System::Scalar> make_tq_discretization(
-    const DiscretizationSpec& spec, const System& system, const typename System::Scalar& curve_tolerance) {
+    const DiscretizationSpec& spec, const System& system, const typename System::Scalar& curve_tolerance,
+    const std::vector<std::pair<std::string, std::string>>& parameters) {
   auto d = make_tq_discretization<typename System::Scalar>(spec, curve_tolerance);
+  if (d.lagrangian == TQLagrangianKind::pullback) d.qxq = make_discretization(*spec.tq->qxq, system, parameters);
   if (d.psi != CurveFamily::linear) {
     if constexpr (TapeRecordable<System>) {
       d.acceleration =
@@ -159,8 +174,8 @@ int contact_order(const TQDiscretization<T>& one, const TQDiscretization<T>& two
       one.lagrangian == two.lagrangian &&
       (one.lagrangian == TQLagrangianKind::exact ||
        (one.lagrangian == TQLagrangianKind::quadrature && one.nodes.size() == two.nodes.size()) ||
-       (one.lagrangian == TQLagrangianKind::pullback && one.qxq.rule == two.qxq.rule &&
-        one.qxq.parameter == two.qxq.parameter && !one.qxq.twin && !two.qxq.twin));
+       (one.lagrangian == TQLagrangianKind::pullback && same_rule(one.qxq, two.qxq) && !one.qxq.twin &&
+        !two.qxq.twin));
   const int action_contact = same_action ? unbounded_order : std::min(action_order(one), action_order(two));
   const bool same_twin = twin_order(one.twin) == twin_order(two.twin) &&
                          (twin_order(one.twin) == unbounded_order || one.twin->a == two.twin->a);
@@ -231,15 +246,16 @@ struct CaseContext {
     if (spec.discretization.formalism == "tq") {
       // An exact psi runs at the reference's step tolerance.
       T curve_tolerance = reference.tolerance() / 1000;
-      tq = make_tq_discretization(spec.discretization, system, curve_tolerance);
+      tq = make_tq_discretization(spec.discretization, system, curve_tolerance, spec.parameters);
       if (spec.compare_discretization)
-        tq_compare = make_tq_discretization(*spec.compare_discretization, system, curve_tolerance);
+        tq_compare = make_tq_discretization(*spec.compare_discretization, system, curve_tolerance, spec.parameters);
       if (spec.past_discretization)
-        tq_past = make_tq_discretization(*spec.past_discretization, system, curve_tolerance);
+        tq_past = make_tq_discretization(*spec.past_discretization, system, curve_tolerance, spec.parameters);
     }
-    scheme.future = make_discretization<T>(spec.discretization);
-    scheme.past = spec.past_discretization && !tq_past ? make_discretization<T>(*spec.past_discretization)
-                                                       : scheme.future;
+    scheme.future = make_discretization(spec.discretization, system, spec.parameters);
+    scheme.past = spec.past_discretization && !tq_past
+                      ? make_discretization(*spec.past_discretization, system, spec.parameters)
+                      : scheme.future;
     scheme.mismatched = spec.past_discretization.has_value() && !tq_past;
     // The initial state must be inside the Lagrangian's domain and regular
     // there; otherwise this throws SingularLagrangianError naming the state.

@@ -12,6 +12,7 @@
 // interval, which keep every order, is seen.
 #pragma once
 
+#include <stdexcept>
 #include <vector>
 
 #include "core/discrete_lagrangian.hpp"
@@ -65,6 +66,8 @@ std::vector<typename System::Scalar> lagrangian_error_expansion(
     case QxQRule::weighted:
       per_step = (1 - c) * system.lagrangian(q_begin, quotient) + c * system.lagrangian(q, quotient);
       break;
+    case QxQRule::expression:  // a user's formula has no second, independent statement to expand
+      throw std::invalid_argument("lagrangian_error_expansion: no independent expansion of a formula L_d");
   }
   P discrete = per_step.shifted(1);
   if (d.twin)  // + a·h^s·(q(h) − q(0))

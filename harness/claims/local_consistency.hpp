@@ -93,7 +93,11 @@ struct LagrangianOrderClaim {
     for (const T& e : signed_error) error.push_back(abs(e));
     claim.series.push_back(make_series("|L_d − L_d^E|", context.steps(), error, context.floor(),
                                        predicted.order, predicted.exact, context.order_tolerance, context.fit_options));
-    if constexpr (TapeRecordable<System>) add_signed_coefficient(claim, context, signed_error);
+    if (context.scheme.future.rule == QxQRule::expression)
+      claim.evidence["leading_coefficient_rule"] =
+          "not compared: a formula L_d has no second statement here to expand independently";
+    else if constexpr (TapeRecordable<System>)
+      add_signed_coefficient(claim, context, signed_error);
     conclude(claim);
     return claim;
   }

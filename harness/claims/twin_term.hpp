@@ -207,8 +207,8 @@ struct MismatchedLegendreClaim {
     const auto& future = context.scheme.future;
     const auto& past = context.scheme.past;
     const int r = context.map_order();
-    const bool same_rule = future.rule == past.rule && future.parameter == past.parameter;
-    int order = same_rule ? r : r - 1;
+    const bool same = same_rule(future, past);
+    int order = same ? r : r - 1;
     auto mismatch = twin_mismatch(future.twin, past.twin, System::dimension);
     if (mismatch.power) order = std::min(order, *mismatch.power - 1);
     return std::max(order, 0);
@@ -229,11 +229,11 @@ struct MismatchedLegendreClaim {
     ClaimResult claim = claim_result_for(id, source, prediction);
     const auto& future = context.scheme.future;
     const auto& past = context.scheme.past;
-    const bool same_rule = future.rule == past.rule && future.parameter == past.parameter;
+    const bool same = same_rule(future, past);
     const auto mismatch = twin_mismatch(future.twin, past.twin, n);
     const int order = mismatch_order(context);
     claim.evidence["predicted_order_vs_original"] = order;
-    claim.evidence["same_rule"] = same_rule;
+    claim.evidence["same_rule"] = same;
     claim.evidence["twin_mismatch_power"] = mismatch.power ? nlohmann::json(*mismatch.power) : nlohmann::json();
     SweepRun<System> run = run_sweep(context, context.scheme);
     State<T, n> final_state = context.exact(context.final_time);
@@ -256,7 +256,7 @@ struct MismatchedLegendreClaim {
                                         format_scalar(original.fit->order, 3) + " < 1/2)"
                                   : "the error vanishes as h → 0: the scheme is consistent";
     claim.series.push_back(original);
-    if (!same_rule || !mismatch.power || *mismatch.power != 1) {
+    if (!same || !mismatch.power || *mismatch.power != 1) {
       claim.explanation = "inconsistent; no modified equation is predicted for this mismatch";
       conclude(claim);
       return claim;

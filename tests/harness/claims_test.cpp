@@ -205,6 +205,7 @@ TYPED_TEST(ClaimsTest, QxQTQEquivalenceHoldsForThePullbackOfEveryRule) {
     nlohmann::json qxq = {{"kind", name}};
     if (name == "alpha") qxq["alpha"] = "0.3";
     if (name == "weighted") qxq["beta"] = "0.6";
+    if (name == "expression") qxq["L_d"] = "h*L(qb + (qe - qb)/3, (qe - qb)/h)", qxq["order"] = 1;
     for (const char* theta : {"0", "1/2"}) {
       nlohmann::json d = {{"formalism", "tq"}, {"psi", "linear"}, {"theta", theta}, {"lagrangian", "pullback"},
                           {"qxq", qxq}};
