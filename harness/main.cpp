@@ -270,8 +270,13 @@ int command_list() {
     for (const auto& p : system.parameters) std::cout << " " << p.name << "=" << p.default_value;
     std::cout << "\n";
   }
+  std::cout << "  or your own: {\"name\", \"lagrangian\": a formula, \"coordinates\", \"velocities\", \"params\"}"
+               " (n = 1..4)\n";
   std::cout << "discretizations (Q×Q rules):\n";
-  for (const auto& rule : rule_names()) std::cout << "  " << rule << "\n";
+  for (const auto& rule : rule_names())
+    std::cout << "  " << rule
+              << (rule == "expression" ? " (with \"L_d\": a formula in qb, qe, h, L(x, v), and your \"order\")" : "")
+              << "\n";
   std::cout << "discretizations of TQ (\"formalism\": \"tq\", \"theta\": a fraction in [0, 1]):\n"
                "  psi: linear | taylor (with \"r\": 1..8) | exact\n"
                "  lagrangian: quadrature (with \"nodes\") | pullback (with a Q×Q \"qxq\") | exact (psi exact only)\n";
