@@ -28,6 +28,37 @@ std::vector<std::string> system_names() {
 
 std::vector<std::string> claim_names() { return claim_ids(); }
 
+const std::vector<std::string>& scalar_names() {
+  static const std::vector<std::string> names = {"double", "long double", "float128", "mpfr"};
+  return names;
+}
+
+FormulaSystemDefinition catalogue_twin(const std::string& name,
+                                       const std::vector<std::pair<std::string, std::string>>& parameters) {
+  // cases/systems.hpp, formula by formula.
+  static const std::map<std::string, std::string> formulas = {
+      {"paper_example", "(g0 + g2*q^2) * w^2 / 2 - (k*(1 - cos(q)) + m*q^2/2)"},
+      {"harmonic_oscillator", "w^2/2 - omega^2*q^2/2"},
+      {"pendulum", "w^2/2 - k*(1 - cos(q))"},
+      {"relativistic_particle", "-mass*sqrt(1 - w^2) - k*q^2/2"},
+      {"charged_particle", "(w1^2 + w2^2)/2 + B*(q1*w2 - q2*w1)/2 - k*(q1^2 + q2^2)/2"}};
+  auto found = formulas.find(name);
+  if (found == formulas.end()) throw std::invalid_argument("no formula twin for the system '" + name + "'");
+  FormulaSystemDefinition definition;
+  definition.name = name;
+  definition.text = found->second;
+  definition.lagrangian = parse_formula(found->second);
+  if (name == "charged_particle") {
+    definition.coordinates = {"q1", "q2"};
+    definition.velocities = {"w1", "w2"};
+  } else {
+    definition.coordinates = {"q"};
+    definition.velocities = {"w"};
+  }
+  definition.parameters = parameters;
+  return definition;
+}
+
 namespace {
 
 // The longest number a case file may write: enough for 2000-digit inputs.
@@ -446,7 +477,16 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
     spec.steps.push_back(n.get<int>());
   }
 
-  if (reader.has("digits")) spec.digits = reader.integer("digits", 20, 2000);
+  if (reader.has("scalar")) spec.scalar = reader.one_of("scalar", scalar_names());
+  if (spec.scalar != "mpfr" && spec.dimension > 2)
+    reader.fail("scalar", "a system of " + std::to_string(spec.dimension) +
+                              " coordinates runs in mpfr only (double, long double and float128 are built for 1 "
+                              "and 2 coordinates)");
+  if (reader.has("digits")) {
+    if (spec.scalar != "mpfr")
+      reader.fail("digits", "sets the MPFR working precision, and this case runs in \"" + spec.scalar + "\"");
+    spec.digits = reader.integer("digits", 20, 2000);
+  }
   spec.discretization = read_discretization(reader.object("discretization"), spec.dimension, spec.parameters);
   if (reader.has("past_discretization"))
     spec.past_discretization =

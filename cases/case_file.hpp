@@ -76,7 +76,8 @@ struct CaseSpec {
   std::vector<std::string> q, w;
   std::string final_time;  // "T"
   std::vector<int> steps;
-  int digits = 60;
+  std::string scalar = "mpfr";  // "double", "long double", "float128" or "mpfr"
+  int digits = 60;              // MPFR only
   DiscretizationSpec discretization;
   std::optional<DiscretizationSpec> past_discretization;
   std::optional<DiscretizationSpec> compare_discretization;  // contact-order: the second discretization
@@ -102,6 +103,15 @@ inline constexpr int maximum_json_depth = 64;
 nlohmann::json parse_json_strictly(std::istream& in, const std::string& where);
 // Validates an already-parsed case; `file` names it in errors.
 CaseSpec parse_case(const nlohmann::json& json, const std::string& file);
+
+// The scalars a case may run in ("scalar", vivv run --scalar).
+const std::vector<std::string>& scalar_names();
+
+// The catalogue system `name` written as a formula, with `parameters`: what runs a catalogue
+// system in a scalar other than MPFR (tests/core/formula_system_test.cpp checks it against the
+// compiled system).
+FormulaSystemDefinition catalogue_twin(const std::string& name,
+                                       const std::vector<std::pair<std::string, std::string>>& parameters);
 
 // Names accepted in case files, for `vivv list` and error messages.
 std::vector<std::string> system_names();

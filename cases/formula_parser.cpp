@@ -2,6 +2,7 @@
 
 #include <boost/fusion/include/at_c.hpp>
 #include <boost/spirit/home/x3.hpp>
+#include <sstream>
 
 namespace vivv {
 
@@ -135,8 +136,10 @@ FormulaNode parse_formula(const std::string& text) {
 
 std::string describe_formula_error(const std::string& text, const FormulaError& error) {
   constexpr std::size_t shown = 60;
-  std::string excerpt = text.size() <= shown ? text : text.substr(0, shown) + "…";
-  return "at character " + std::to_string(error.position + 1) + " of \"" + excerpt + "\": " + error.what();
+  std::ostringstream out;
+  out << "at character " << error.position + 1 << " of \"" << text.substr(0, shown)
+      << (text.size() > shown ? "…" : "") << "\": " << error.what();
+  return out.str();
 }
 
 }  // namespace vivv

@@ -67,7 +67,7 @@ template <class T>
 std::string scalar_name() {
   if constexpr (std::is_same_v<T, double>) return "double";
   if constexpr (std::is_same_v<T, long double>) return "long double";
-  if constexpr (std::is_same_v<T, quad>) return "quad";
+  if constexpr (std::is_same_v<T, quad>) return "float128";
   if constexpr (is_mpfr_v<T>) return "mpfr";
 }
 

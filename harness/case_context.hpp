@@ -183,12 +183,14 @@ int contact_order(const TQDiscretization<T>& one, const TQDiscretization<T>& two
   return std::min({psi_contact, action_contact, twin_contact});
 }
 
-// Reference tolerance for a case computed with `digits` decimal digits: ten
-// digits of the working precision are kept as guard.
+// Reference tolerance for a case computed in MPFR with `digits` decimal digits: ten
+// digits of the working precision are kept as guard. In double, long double and
+// float128 the reference runs in the same scalar: 1000 ε, three digits of guard.
 template <class T>
 T reference_tolerance_for(int digits) {
   using std::pow;
-  return pow(T(10), -(digits - 10));
+  if constexpr (is_mpfr_v<T>) return pow(T(10), -(digits - 10));
+  else return 1000 * epsilon<T>();
 }
 
 // The reference's own cross-check against what it promises: the distance

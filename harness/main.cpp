@@ -1,6 +1,6 @@
 // vivv: the command-line tool (docs/case-files.md).
 //
-//   vivv run [CASE.json ...] [--out DIR] [--digits D] [--jobs J] [--refine] [--progress]
+//   vivv run [CASE.json ...] [--out DIR] [--digits D] [--scalar S] [--jobs J] [--refine] [--progress]
 //   vivv report REPORT.json [MORE.json ...] --out DIR   (merge and re-render)
 //   vivv list
 //
@@ -46,6 +46,7 @@ struct RunOptions {
   std::vector<std::string> case_files;
   std::string out = "vivv-report";
   std::optional<int> digits;
+  std::optional<std::string> scalar;
   int jobs = 1;
   bool progress = isatty(STDERR_FILENO);
   bool refine = false;
@@ -99,7 +100,12 @@ RunOptions parse_run_options(const std::vector<std::string>& args) {
     };
     if (arg == "--out") options.out = value();
     else if (arg == "--digits") options.digits = parse_integer(arg, value(), 20, 2000);
-    else if (arg == "--jobs") options.jobs = parse_integer(arg, value(), 1, 64);
+    else if (arg == "--scalar") {
+      options.scalar = value();
+      const auto& names = scalar_names();
+      if (std::find(names.begin(), names.end(), *options.scalar) == names.end())
+        throw BadInput("--scalar: expected double, \"long double\", float128 or mpfr, got '" + *options.scalar + "'");
+    } else if (arg == "--jobs") options.jobs = parse_integer(arg, value(), 1, 64);
     else if (arg == "--progress") options.progress = true;
     else if (arg == "--quiet") options.progress = false;
     else if (arg == "--refine") options.refine = true;
@@ -123,7 +129,12 @@ std::function<void(const std::string&)> progress_printer(bool enabled) {
 // Runs one case; solver failures and non-regular Lagrangians are bad input.
 nlohmann::json run_one(const CaseSpec& spec, const RunOptions& options) {
   try {
-    return case_json(run_case(spec, options.digits, options.refine, progress_printer(options.progress)));
+    CaseSpec effective = spec;
+    if (options.scalar) effective.scalar = *options.scalar;
+    if (options.digits && effective.scalar != "mpfr")
+      throw BadInput("--digits sets the MPFR working precision, and this case runs in \"" +
+                     effective.scalar + "\"");
+    return case_json(run_case(effective, options.digits, options.refine, progress_printer(options.progress)));
   } catch (const CaseError&) {
     throw;  // names the file and the field already
   } catch (const SolverError& error) {
@@ -289,7 +300,7 @@ int command_list() {
 }
 
 int usage(std::ostream& out, int code) {
-  out << "usage: vivv run [CASE.json ...] [--out DIR] [--digits D] [--jobs J] [--refine] [--progress|--quiet]\n"
+  out << "usage: vivv run [CASE.json ...] [--out DIR] [--digits D] [--scalar S] [--jobs J] [--refine] [--progress|--quiet]\n"
          "       vivv report REPORT.json [MORE.json ...] --out DIR\n"
          "       vivv list\n";
   return code;

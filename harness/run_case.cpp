@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <memory>
 
 #include "cases/catalogue.hpp"
 #include "harness/run_system.hpp"
@@ -41,33 +43,70 @@ std::optional<std::string> unsettled_series(const std::vector<ClaimResult>& clai
   return std::nullopt;
 }
 
+namespace {
+
+// `spec` run in scalar T: formula systems of dimension 1 to 4 in every scalar, catalogue
+// systems compiled in MPFR and through their formula twins in the others.
+template <class T>
+void run_in_scalar(CaseSpec& spec, CaseResult& result, bool refine,
+                   const std::function<void(const std::string&)>& progress) {
+  result.scalar = scalar_name<T>();
+  result.digits = is_mpfr_v<T> ? spec.digits : std::numeric_limits<T>::digits10;
+  result.precision_bits = precision_bits<T>();
+  std::shared_ptr<const FormulaSystemDefinition> formula = spec.formula;
+  if (!formula && !is_mpfr_v<T>) {
+    formula = std::make_shared<const FormulaSystemDefinition>(catalogue_twin(spec.system, spec.parameters));
+    result.implementation = "formula twin of the catalogue system (compiled catalogue systems run in mpfr)";
+  } else {
+    result.implementation = formula ? "formula" : "compiled catalogue system";
+  }
+  if (formula) {
+    result.formula = formula->text;
+    if constexpr (is_mpfr_v<T>) {
+      switch (spec.dimension) {
+        case 3: run_on_system(make_formula_system<T, 3>(*formula), spec, result, refine, progress); return;
+        case 4: run_on_system(make_formula_system<T, 4>(*formula), spec, result, refine, progress); return;
+        default: break;
+      }
+    }
+    switch (spec.dimension) {
+      case 1: run_on_system(make_formula_system<T, 1>(*formula), spec, result, refine, progress); break;
+      case 2: run_on_system(make_formula_system<T, 2>(*formula), spec, result, refine, progress); break;
+      default:
+        throw CaseError(spec.file, "scalar", "a system of " + std::to_string(spec.dimension) +
+                                                 " coordinates runs in mpfr only (double, long double and "
+                                                 "float128 are built for 1 and 2 coordinates)");
+    }
+    return;
+  }
+  if constexpr (is_mpfr_v<T>) {
+    std::vector<std::string> parameters;
+    for (const auto& [name, value] : spec.parameters) parameters.push_back(value);
+    visit_system<T>(spec.system, parameters,
+                    [&](const auto& system) { run_on_system(system, spec, result, refine, progress); });
+  }
+}
+
+}  // namespace
+
 CaseResult run_case(const CaseSpec& case_spec, std::optional<int> digits, bool refine,
                     const std::function<void(const std::string&)>& progress) {
   auto started = std::chrono::steady_clock::now();
   CaseSpec spec = case_spec;
   if (digits) spec.digits = *digits;
   refine = refine || spec.refine;
-  PrecisionGuard guard(spec.digits);
-  using T = mpfr_real;
   CaseResult result;
-  result.scalar = scalar_name<T>();
-  result.digits = spec.digits;
-  result.precision_bits = precision_bits<T>();
   result.sweep.refine = refine;
   result.sweep.requested_steps = spec.steps;
-  if (spec.formula) {
-    switch (spec.dimension) {
-      case 1: run_on_system(make_formula_system<T, 1>(*spec.formula), spec, result, refine, progress); break;
-      case 2: run_on_system(make_formula_system<T, 2>(*spec.formula), spec, result, refine, progress); break;
-      case 3: run_on_system(make_formula_system<T, 3>(*spec.formula), spec, result, refine, progress); break;
-      case 4: run_on_system(make_formula_system<T, 4>(*spec.formula), spec, result, refine, progress); break;
-      default: throw CaseError(spec.file, "system.coordinates", "expected 1 to 4 coordinates");
-    }
+  if (spec.scalar == "double") {
+    run_in_scalar<double>(spec, result, refine, progress);
+  } else if (spec.scalar == "long double") {
+    run_in_scalar<long double>(spec, result, refine, progress);
+  } else if (spec.scalar == "float128") {
+    run_in_scalar<quad>(spec, result, refine, progress);
   } else {
-    std::vector<std::string> parameters;
-    for (const auto& [name, value] : spec.parameters) parameters.push_back(value);
-    visit_system<T>(spec.system, parameters,
-                    [&](const auto& system) { run_on_system(system, spec, result, refine, progress); });
+    PrecisionGuard guard(spec.digits);
+    run_in_scalar<mpfr_real>(spec, result, refine, progress);
   }
   result.spec = spec;  // with the sweep actually used
   result.seconds =

@@ -23,7 +23,9 @@ struct SweepRecord {
 
 struct CaseResult {
   CaseSpec spec;
-  std::string scalar;  // "mpfr"
+  std::string scalar;          // "double", "long double", "float128" or "mpfr"
+  std::string implementation;  // how L was run: compiled, a formula, a catalogue system's formula twin
+  std::string formula;         // the formula of L that ran, if one did
   int digits = 0;      // decimal digits requested
   int precision_bits = 0;
   std::string reference_method, reference_tolerance, reference_cross_check;
@@ -38,8 +40,8 @@ struct CaseResult {
   double seconds = 0;
 };
 
-// Runs `spec` in MPFR with `digits` decimal digits (the case's own unless
-// overridden). Solver failures, non-regular Lagrangians and declared orders
+// Runs `spec` in its scalar (MPFR with `digits` decimal digits, the case's own
+// unless overridden). Solver failures, non-regular Lagrangians and declared orders
 // below the theorem's (CaseError) propagate as exceptions: they are bad input,
 // not verdicts. A reference that misses its own tolerance makes every claim
 // "error"; the case's xfail marks turn fail/pass into xfail/xpass.

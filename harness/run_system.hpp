@@ -19,6 +19,9 @@ template <LagrangianSystem System>
 void run_on_system(const System& system, CaseSpec& spec, CaseResult& result, bool refine,
                    const std::function<void(const std::string&)>& progress);
 
+// Scalar names CMake can write into a generated file.
+using long_double = long double;
+
 // Formula systems by dimension, for the generated instantiations.
 template <class T>
 using FormulaSystem1 = FormulaSystem<T, 1>;

@@ -89,6 +89,8 @@ nlohmann::json case_json(const CaseResult& result) {
           {"file", spec.file},
           {"case_file", spec.source},
           {"system", spec.system},
+          {"system_implementation", result.implementation},
+          {"lagrangian_formula", result.formula},
           {"parameters", parameters},
           {"initial", {{"q", spec.q}, {"w", spec.w}}},
           {"T", spec.final_time},

@@ -14,7 +14,7 @@ namespace vivv::testing {
 
 using Scalars = ::testing::Types<double, quad, mpfr_real>;
 
-// Readable typed-test names: "double", "quad", "mpfr" instead of Boost's type names.
+// Readable typed-test names: "double", "float128", "mpfr" instead of Boost's type names.
 struct ScalarNames {
   template <class T>
   static std::string GetName(int) {

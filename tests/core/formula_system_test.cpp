@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "cases/case_file.hpp"
+#include "cases/catalogue.hpp"
 #include "cases/formula_parser.hpp"
 #include "cases/systems.hpp"
 #include "core/del_evolution.hpp"
@@ -29,28 +31,26 @@ FormulaSystemDefinition definition(const std::string& text, std::vector<std::str
   return {"formula", text, parse_formula(text), std::move(coordinates), std::move(velocities), std::move(parameters)};
 }
 
-// The catalogue's five systems written as formulas, with their default parameters.
-std::vector<FormulaSystemDefinition> catalogue_twins() {
-  return {
-      definition("(g0 + g2*q^2) * w^2 / 2 - (k*(1 - cos(q)) + m*q^2/2)", {"q"}, {"w"},
-                 {{"g0", "1"}, {"g2", "0.5"}, {"k", "1"}, {"m", "0"}}),
-      definition("w^2/2 - omega^2*q^2/2", {"q"}, {"w"}, {{"omega", "1"}}),
-      definition("w^2/2 - k*(1 - cos(q))", {"q"}, {"w"}, {{"k", "1"}}),
-      definition("-mass*sqrt(1 - w^2) - k*q^2/2", {"q"}, {"w"}, {{"mass", "1"}, {"k", "1"}}),
-      definition("(w1^2 + w2^2)/2 + B*(q1*w2 - q2*w1)/2 - k*(q1^2 + q2^2)/2", {"q1", "q2"}, {"w1", "w2"},
-                 {{"B", "1"}, {"k", "1"}}),
-  };
+// The catalogue's five systems as the formulas a case in double, long double or float128 runs
+// them through (cases/case_file.cpp), with their default parameters.
+FormulaSystemDefinition twin_of(const std::string& name) {
+  for (const auto& info : system_catalogue())
+    if (info.name == name) {
+      std::vector<std::pair<std::string, std::string>> parameters;
+      for (const auto& p : info.parameters) parameters.emplace_back(p.name, p.default_value);
+      return catalogue_twin(name, parameters);
+    }
+  throw std::invalid_argument("no system " + name);
 }
 
 // Runs f(catalogue system, its formula twin) for each of the five, in T.
 template <class T, class F>
 void for_each_twin(F&& f) {
-  const auto twins = catalogue_twins();
-  f(PaperExample<T>{}, make_formula_system<T, 1>(twins[0]), "paper_example");
-  f(HarmonicOscillator<T>{}, make_formula_system<T, 1>(twins[1]), "harmonic_oscillator");
-  f(Pendulum<T>{}, make_formula_system<T, 1>(twins[2]), "pendulum");
-  f(RelativisticParticle<T>{}, make_formula_system<T, 1>(twins[3]), "relativistic_particle");
-  f(ChargedParticle<T>{}, make_formula_system<T, 2>(twins[4]), "charged_particle");
+  f(PaperExample<T>{}, make_formula_system<T, 1>(twin_of("paper_example")), "paper_example");
+  f(HarmonicOscillator<T>{}, make_formula_system<T, 1>(twin_of("harmonic_oscillator")), "harmonic_oscillator");
+  f(Pendulum<T>{}, make_formula_system<T, 1>(twin_of("pendulum")), "pendulum");
+  f(RelativisticParticle<T>{}, make_formula_system<T, 1>(twin_of("relativistic_particle")), "relativistic_particle");
+  f(ChargedParticle<T>{}, make_formula_system<T, 2>(twin_of("charged_particle")), "charged_particle");
 }
 
 // A state every catalogue system is regular at (|w| < 1 for the relativistic particle).

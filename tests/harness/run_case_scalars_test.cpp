@@ -1,0 +1,99 @@
+// A case runs in the scalar it names: every claim of a small Q×Q case and a
+// small TQ case, a formula system and a catalogue one, in double, long double,
+// float128 and MPFR. The report says which scalar and how many bits, and the
+// floor below which errors are round-off follows the scalar.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "cases/case_file.hpp"
+#include "harness/run_case.hpp"
+
+namespace vivv {
+namespace {
+
+
+CaseSpec case_in(const std::string& scalar, nlohmann::json system, nlohmann::json discretization,
+                 std::vector<std::string> claims) {
+  nlohmann::json json = {{"name", "scalar-case"},
+                         {"system", std::move(system)},
+                         {"initial", {{"q", {"1"}}, {"w", {"0.5"}}}},
+                         {"T", "1"},
+                         {"steps", {8, 16, 32, 64}},
+                         {"scalar", scalar},
+                         {"discretization", std::move(discretization)},
+                         {"claims", claims}};
+  return parse_case(json, "scalar-case.json");
+}
+
+const nlohmann::json pendulum_formula = {{"name", "pendulum-formula"},
+                                         {"lagrangian", "w^2/2 - k*(1 - cos(q))"},
+                                         {"coordinates", {"q"}},
+                                         {"velocities", {"w"}},
+                                         {"params", {{"k", "1"}}}};
+
+int expected_bits(const std::string& scalar) {
+  if (scalar == "double") return 53;
+  if (scalar == "long double") return 64;
+  if (scalar == "float128") return 113;
+  PrecisionGuard guard(60);  // the default digits
+  return precision_bits<mpfr_real>();
+}
+
+class RunCaseScalarTest : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(RunCaseScalarTest, EveryClaimOfAFormulaCaseRunsAndHolds) {
+  const std::string scalar = GetParam();
+  const std::vector<std::pair<nlohmann::json, std::vector<std::string>>> cases = {
+      {{{"kind", "expression"}, {"L_d", "h*L((qb + qe)/2, (qe - qb)/h)"}, {"order", 2}, {"twin", {{"a", {"0.5"}}, {"power", 2}}}},
+       {"global-order", "lagrangian-order", "legendre-order", "twin-term-invariance"}},
+      {{{"formalism", "tq"}, {"psi", "linear"}, {"theta", "1/2"}, {"lagrangian", "pullback"},
+        {"qxq", {{"kind", "expression"}, {"L_d", "h*L((qb + qe)/2, (qe - qb)/h)"}, {"order", 2}}}},
+       {"order", "global-order", "qxq-tq-equivalence", "existence-uniqueness"}},
+  };
+  for (const auto& [discretization, claims] : cases) {
+    CaseResult result = run_case(case_in(scalar, pendulum_formula, discretization, claims), std::nullopt, false, {});
+    EXPECT_EQ(result.scalar, scalar);
+    EXPECT_EQ(result.precision_bits, expected_bits(scalar));
+    EXPECT_EQ(result.implementation, "formula");
+    for (const auto& claim : result.claims) EXPECT_EQ(claim.verdict, "pass") << scalar << ": " << claim.id << ": " << claim.explanation;
+  }
+}
+
+// A catalogue system outside MPFR runs through its formula twin, and says so.
+TEST_P(RunCaseScalarTest, ACatalogueSystemSaysHowItRan) {
+  const std::string scalar = GetParam();
+  CaseResult result =
+      run_case(case_in(scalar, {{"name", "pendulum"}}, {{"kind", "midpoint"}}, {"global-order"}), std::nullopt, false, {});
+  EXPECT_EQ(result.claims.at(0).verdict, "pass") << result.claims.at(0).explanation;
+  if (scalar == "mpfr") {
+    EXPECT_EQ(result.implementation, "compiled catalogue system");
+  } else {
+    EXPECT_NE(result.implementation.find("formula twin"), std::string::npos);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scalars, RunCaseScalarTest, ::testing::Values("double", "long double", "float128", "mpfr"),
+                         [](const auto& info) {
+                           std::string name = info.param;
+                           for (auto& c : name)
+                             if (c == ' ') c = '_';
+                           return name;
+                         });
+
+// The floor follows the scalar: far above double's round-off in double, far below it in MPFR.
+// Negative control of the floors: the same case's floor in double is at least 1e20 times MPFR's.
+TEST(RunCaseScalarFloor, FollowsTheScalar) {
+  auto floor_of = [](const std::string& scalar) {
+    CaseResult result = run_case(case_in(scalar, pendulum_formula, {{"kind", "midpoint"}}, {"lagrangian-order"}),
+                                 std::nullopt, false, {});
+    return std::stold(result.claims.at(0).series.at(0).floor);
+  };
+  const long double in_double = floor_of("double"), in_mpfr = floor_of("mpfr");
+  EXPECT_GT(in_double, 1e-16L);
+  EXPECT_LT(in_double, 1e-8L);
+  EXPECT_GT(in_double, 1e20L * in_mpfr);
+}
+
+}  // namespace
+}  // namespace vivv
