@@ -140,19 +140,26 @@ PowerSeries<T> exp(const PowerSeries<T>& a) {
   return e;
 }
 
-// l = log(a): a l' = a', so k l_k = (k a_k − Σ_{j=1..k−1} j l_j a_{k−j}) / a_0.
+// t with d t' = a' and t_0 = first: k d_0 t_k = k a_k − Σ_{j=1..k−1} j t_j d_{k−j}
+// (log: d = a; atan: d = 1 + a²).
+template <class T>
+PowerSeries<T> integral_of_ratio(const PowerSeries<T>& a, const PowerSeries<T>& d, const T& first) {
+  PowerSeries<T> t(T(0), a.length());
+  t[0] = first;
+  for (int k = 1; k < a.length(); ++k) {
+    T sum = k * a[k];
+    for (int j = 1; j < k; ++j) sum -= j * t[j] * d[k - j];
+    t[k] = sum / (k * d[0]);
+  }
+  return t;
+}
+
+// l = log(a): a l' = a'.
 template <class T>
 PowerSeries<T> log(const PowerSeries<T>& a) {
   using std::log;
   if (!(a[0] > 0)) throw std::domain_error("PowerSeries: log of a series with constant term <= 0");
-  PowerSeries<T> l(T(0), a.length());
-  l[0] = log(a[0]);
-  for (int k = 1; k < a.length(); ++k) {
-    T sum = k * a[k];
-    for (int j = 1; j < k; ++j) sum -= j * l[j] * a[k - j];
-    l[k] = sum / (k * a[0]);
-  }
-  return l;
+  return integral_of_ratio(a, a, T(log(a[0])));
 }
 
 // p = a^c: a p' = c a' p, so k a_0 p_k = Σ_{j=1..k} (c j − (k − j)) a_j p_{k−j}.
@@ -175,19 +182,11 @@ PowerSeries<T> sqrt(const PowerSeries<T>& a) {
   return pow(a, T(1) / 2);
 }
 
-// t = atan a: (1 + a²) t' = a', so with d = 1 + a², k d_0 t_k = k a_k − Σ_{j=1..k−1} j t_j d_{k−j}.
+// t = atan a: (1 + a²) t' = a'.
 template <class T>
 PowerSeries<T> atan(const PowerSeries<T>& a) {
   using std::atan;
-  const PowerSeries<T> d = 1 + a * a;
-  PowerSeries<T> t(T(0), a.length());
-  t[0] = atan(a[0]);
-  for (int k = 1; k < a.length(); ++k) {
-    T sum = k * a[k];
-    for (int j = 1; j < k; ++j) sum -= j * t[j] * d[k - j];
-    t[k] = sum / (k * d[0]);
-  }
-  return t;
+  return integral_of_ratio(a, PowerSeries<T>(1 + a * a), T(atan(a[0])));
 }
 
 // s = sin a, c = cos a: s' = c a', c' = −s a'.

@@ -418,33 +418,23 @@ void TaylorExpansion<T>::node_coefficient(int index, int k) {
       multiply_adds_ += k + 1;
       return;
     }
-    case TapeOp::log: {
-      T* dl = weighted_self(index);
-      if (k == 0) {
-        c[0] = log(u[0]);
-        return;
-      }
-      set_dot(sum_, dl, u, 1, k - 1, k, scratch_);
-      set_div_int(sum_, sum_, k);
-      set_sub(sum_, u[k], sum_);
-      set_div(c[k], sum_, u[0]);
-      set_mul_int(dl[k], c[k], k);
-      multiply_adds_ += k + 1;
-      return;
-    }
+    case TapeOp::log:
     case TapeOp::atan: {
-      // (1 + u²) t' = u' with d = 1 + u² the node b: the log recurrence with d in the denominator.
-      T* dt = weighted_self(index);
+      // d c' = u' with d = u (log) or d = 1 + u², the node b (atan):
+      // c_k = (u_k − (1/k) Σ_{j=1..k−1} j c_j d_{k−j}) / d_0.
+      const T* d = node.op == TapeOp::log ? u : w;
+      T* dc = weighted_self(index);
       if (k == 0) {
         using std::atan;
-        c[0] = atan(u[0]);
+        if (node.op == TapeOp::log) c[0] = log(u[0]);
+        else c[0] = atan(u[0]);
         return;
       }
-      set_dot(sum_, dt, w, 1, k - 1, k, scratch_);
+      set_dot(sum_, dc, d, 1, k - 1, k, scratch_);
       set_div_int(sum_, sum_, k);
       set_sub(sum_, u[k], sum_);
-      set_div(c[k], sum_, w[0]);
-      set_mul_int(dt[k], c[k], k);
+      set_div(c[k], sum_, d[0]);
+      set_mul_int(dc[k], c[k], k);
       multiply_adds_ += k + 1;
       return;
     }

@@ -15,6 +15,7 @@
 #include "cases/systems.hpp"
 #include "core/del_evolution.hpp"
 #include "core/formula_system.hpp"
+#include "core/power_series.hpp"
 #include "references/taylor_flow.hpp"
 #include "tests/test_scalars.hpp"
 
@@ -202,6 +203,32 @@ TEST(FormulaSystemErrors, DomainAtTheInitialState) {
   EXPECT_THROW(check_formula_domain<double>(definition("log(q) + w^2", {"q"}, {"w"}), {0.0}, {0.0}), FormulaError);
   EXPECT_THROW(check_formula_domain<double>(definition("1/q + w^2", {"q"}, {"w"}), {0.0}, {0.0}), FormulaError);
   EXPECT_THROW(check_formula_domain<double>(definition("q^0.5 + w^2", {"q"}, {"w"}), {-1.0}, {0.0}), FormulaError);
+}
+
+}  // namespace
+}  // namespace vivv
+
+namespace vivv {
+namespace {
+
+// atan and log of a power series (used when a formula L is expanded along a solution) against
+// their closed forms on a + b h: atan_k = (−1)^{k−1} b^k sin(kφ) / (k ρ^k), log_k = (−1)^{k−1} (b/a)^k / k.
+TYPED_TEST(FormulaSystemTest, PowerSeriesAtanAndLogMatchTheirClosedForms) {
+  using T = TypeParam;
+  using std::abs, std::atan, std::log, std::pow, std::sin, std::sqrt;
+  const T a = T(13) / 10, b = T(-2) / 5;
+  const auto line = PowerSeries<T>::from({a, b, T(0), T(0), T(0), T(0), T(0), T(0)});
+  const PowerSeries<T> arc = atan(line), logarithm = log(line);
+  const T rho = sqrt(1 + a * a), phi = atan(1 / a);
+  EXPECT_LE(abs(T(arc[0] - atan(a))), this->working_tolerance());
+  EXPECT_LE(abs(T(logarithm[0] - log(a))), this->working_tolerance());
+  for (int k = 1; k < line.length(); ++k) {
+    const T sign = k % 2 == 1 ? 1 : -1;
+    EXPECT_LE(abs(T(arc[k] - sign * pow(b / rho, k) * sin(k * phi) / k)), this->working_tolerance()) << k;
+    EXPECT_LE(abs(T(logarithm[k] - sign * pow(b / a, k) / k)), this->working_tolerance()) << k;
+  }
+  // Negative control: the closed form of atan is not log's.
+  EXPECT_GT(abs(T(arc[2] - (-1) * pow(b / a, 2) / 2)), T(1) / 100);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <tuple>
 
 #include "cases/case_file.hpp"
 #include "harness/run_case.hpp"
@@ -14,7 +15,7 @@ namespace {
 
 
 CaseSpec case_in(const std::string& scalar, nlohmann::json system, nlohmann::json discretization,
-                 std::vector<std::string> claims) {
+                 std::vector<std::string> claims, const nlohmann::json& more = nlohmann::json::object()) {
   nlohmann::json json = {{"name", "scalar-case"},
                          {"system", std::move(system)},
                          {"initial", {{"q", {"1"}}, {"w", {"0.5"}}}},
@@ -23,6 +24,7 @@ CaseSpec case_in(const std::string& scalar, nlohmann::json system, nlohmann::jso
                          {"scalar", scalar},
                          {"discretization", std::move(discretization)},
                          {"claims", claims}};
+  json.update(more);
   return parse_case(json, "scalar-case.json");
 }
 
@@ -44,6 +46,24 @@ class RunCaseScalarTest : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(RunCaseScalarTest, EveryClaimOfAFormulaCaseRunsAndHolds) {
   const std::string scalar = GetParam();
+  const nlohmann::json midpoint = {{"kind", "expression"}, {"L_d", "h*L((qb + qe)/2, (qe - qb)/h)"}, {"order", 2}};
+  const nlohmann::json tq_midpoint = {{"formalism", "tq"}, {"psi", "linear"}, {"theta", "1/2"},
+                                      {"lagrangian", "quadrature"}, {"nodes", 1}};
+  const nlohmann::json tq_taylor = {{"formalism", "tq"}, {"psi", "taylor"}, {"r", 2}, {"theta", "1/2"},
+                                    {"lagrangian", "quadrature"}, {"nodes", 2}};
+  nlohmann::json twinned = midpoint;
+  twinned["twin"] = {{"a", {"1"}}, {"power", 3}};
+  const std::vector<std::tuple<nlohmann::json, std::vector<std::string>, nlohmann::json>> more = {
+      {midpoint, {"mismatched-legendre"}, {{"past_discretization", twinned}}},
+      {tq_midpoint, {"contact-order", "past-future-symmetry"}, {{"compare_discretization", tq_taylor}}},
+      {{{"formalism", "tq"}, {"psi", "exact"}, {"theta", "1/2"}, {"lagrangian", "exact"}}, {"exact-discretization"}, nlohmann::json::object()},
+  };
+  for (const auto& [discretization, claims, extra] : more) {
+    CaseResult result =
+        run_case(case_in(scalar, pendulum_formula, discretization, claims, extra), std::nullopt, false, {});
+    ASSERT_EQ(result.claims.size(), claims.size()) << scalar;
+    for (const auto& claim : result.claims) EXPECT_EQ(claim.verdict, "pass") << scalar << ": " << claim.id << ": " << claim.explanation;
+  }
   const std::vector<std::pair<nlohmann::json, std::vector<std::string>>> cases = {
       {{{"kind", "expression"}, {"L_d", "h*L((qb + qe)/2, (qe - qb)/h)"}, {"order", 2}, {"twin", {{"a", {"0.5"}}, {"power", 2}}}},
        {"global-order", "lagrangian-order", "legendre-order", "twin-term-invariance"}},
@@ -56,6 +76,7 @@ TEST_P(RunCaseScalarTest, EveryClaimOfAFormulaCaseRunsAndHolds) {
     EXPECT_EQ(result.scalar, scalar);
     EXPECT_EQ(result.precision_bits, expected_bits(scalar));
     EXPECT_EQ(result.implementation, "formula");
+    ASSERT_EQ(result.claims.size(), claims.size()) << scalar;
     for (const auto& claim : result.claims) EXPECT_EQ(claim.verdict, "pass") << scalar << ": " << claim.id << ": " << claim.explanation;
   }
 }
