@@ -18,6 +18,21 @@ namespace vivv {
 template <class S, int n>
 using Point = std::array<S, n>;
 
+// The same coordinates as a Point (what L takes) and as a Vector (what the solvers take).
+template <class S, int n>
+Point<S, n> as_point(const Vector<S, n>& v) {
+  Point<S, n> p;
+  for (int i = 0; i < n; ++i) p[i] = v[i];
+  return p;
+}
+
+template <class S, int n>
+Vector<S, n> as_vector(const Point<S, n>& p) {
+  Vector<S, n> v;
+  for (int i = 0; i < n; ++i) v[i] = p[i];
+  return v;
+}
+
 // A Lagrangian system on Q = R^n with parameters in the scalar Scalar, whose
 // L can be evaluated in Scalar and in jets over it.
 template <class System>

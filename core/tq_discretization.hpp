@@ -61,9 +61,7 @@ struct TangentPoint {
 // The state v = (q, w) as a point of TQ.
 template <class T, int n>
 TangentPoint<T, n> tangent_point(const State<T, n>& v) {
-  TangentPoint<T, n> point;
-  for (int i = 0; i < n; ++i) point.q[i] = v.q[i], point.w[i] = v.w[i];
-  return point;
+  return {as_point<T, n>(v.q), as_point<T, n>(v.w)};
 }
 
 // The curve segment t ↦ psi(h, t, v) through v, for t in [α−, α+]: linear and

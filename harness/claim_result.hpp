@@ -1,52 +1,13 @@
-// What a claim returns: its verdict and the evidence behind it (docs/claims.md).
-//
-// Results are plain data, independent of the scalar type: every number that
-// came out of a computation in the working precision is kept as a decimal
-// string, so the report loses nothing.
+// How a claim's verdict is settled beyond its own measurement: a reference that
+// misses its tolerance, a case's known failures. The result types themselves are
+// the report model, reports/results.hpp.
 #pragma once
 
-#include <nlohmann/json.hpp>
-#include <optional>
 #include <string>
-#include <vector>
 
-#include "harness/order_fit.hpp"
+#include "reports/results.hpp"
 
 namespace vivv {
-
-// One measured quantity over the step sweep, with its fitted order.
-struct Series {
-  std::string label;               // what was measured, e.g. "|q_N − q(T)|"
-  std::vector<std::string> h;      // step sizes, decimal strings
-  std::vector<std::string> error;  // measured errors, decimal strings
-  std::string floor;               // error level treated as round-off / reference floor
-  std::optional<OrderFit> fit;
-  std::optional<double> predicted_order;
-  bool exact_order = false;        // predicted order is exact, not a lower bound
-  std::optional<bool> holds;       // verdict of this series alone
-  std::string explanation;
-};
-
-struct ClaimResult {
-  std::string id;
-  std::string source;      // where the theory states it (paper / Marsden–West)
-  std::string prediction;  // what the theory predicts, in words
-  // "pass", "fail", "error" (the measurement cannot be trusted), or for a claim
-  // the case marks as a known failure "xfail" (it failed) / "xpass" (it passed).
-  std::string verdict;
-  std::string explanation; // why, in one or two sentences
-  std::string xfail_reason;  // the case's reason, when it marks the claim as a known failure
-  std::vector<Series> series;  // series[0] is the claim's main measurement
-  nlohmann::json evidence = nlohmann::json::object();
-};
-
-// What the case's reference flow promises and what its own cross-check measured.
-struct ReferenceCheck {
-  std::string tolerance;       // promised: |error_i| <= tolerance·(1 + |y_i|)
-  std::string error_estimate;  // measured at T by the independent cross-check
-  std::string allowed;         // (tolerance + the check's own)·(1 + |F_T(v)|_max): what the estimate may reach
-  bool holds = true;
-};
 
 // A reference that misses its own promised tolerance voids every claim
 // measured against it: each verdict becomes "error", the numbers in the

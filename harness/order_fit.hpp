@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "core/scalar.hpp"
+#include "reports/results.hpp"  // OrderFit, the data a fit produces
 
 namespace vivv {
 
@@ -45,29 +46,6 @@ struct FitOptions {
   // where that is: leading points whose pairwise order differs from it by more than this are
   // pre-asymptotic too. 0 turns the rule off.
   double asymptote_tolerance = 0;
-};
-
-// A point left out of the fit: its index into the caller's arrays and why.
-using DroppedPoint = std::pair<int, std::string>;
-
-// The observed order of a sweep, with the evidence for it.
-struct OrderFit {
-  bool ok = false;               // false if fewer than 2 usable points (then `reason` explains)
-  std::string reason;            // empty when ok
-  double order = NAN;            // least-squares slope of log e against log h over the used points
-  double standard_error = NAN;   // of the slope; NaN with exactly 2 points
-  double confidence_low = NAN;   // order ∓ t·standard_error (Student's t, n − 2 degrees of
-  double confidence_high = NAN;  // freedom); ∓inf with exactly 2 points
-  double confidence = NAN;       // the level of that interval (FitOptions::confidence)
-  double log_constant = NAN;     // intercept: e ≈ C h^order, log C
-  std::vector<int> sorted;       // every index, by decreasing h (ties in the caller's order)
-  std::vector<double> pairwise_orders;  // between sorted[k] and sorted[k+1]; NaN where undefined
-  std::vector<int> used;                // indices used in the fit, ascending
-  // The last FitOptions::finest_orders pairwise orders between consecutive used points
-  // (largest h first): the small-h end, where an asymptotic statement lives.
-  std::vector<double> finest_orders;
-  std::vector<DroppedPoint> dropped;    // indices left out and why, ascending by index
-  std::vector<std::string> notes;       // what the reader should know but no rule acted on
 };
 
 // The comparison of an observed order with a prediction.

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "cases/catalogue.hpp"
+#include "harness/order_fit.hpp"
 #include "harness/run_system.hpp"
 
 namespace vivv {

@@ -7,38 +7,9 @@
 #include <vector>
 
 #include "cases/case_file.hpp"
-#include "harness/claim_result.hpp"
+#include "reports/results.hpp"
 
 namespace vivv {
-
-// The step sweep a case actually used: with --refine (or "refine": true) h is
-// halved until every order-fitted series settles, within a stated budget.
-struct SweepRecord {
-  static constexpr int max_refinements = 4;     // at most 4 halvings of h beyond the case's own sweep
-  static constexpr long max_steps = 1000000;    // and N never beyond the case file's limit
-  bool refine = false;
-  std::vector<int> requested_steps;  // as the case file gives them
-  std::string stopped;               // why refinement stopped (empty without --refine)
-};
-
-struct CaseResult {
-  CaseSpec spec;
-  std::string scalar;          // "double", "long double", "float128" or "mpfr"
-  std::string implementation;  // how L was run: compiled, a formula, a catalogue system's formula twin
-  std::string formula;         // the formula of L that ran, if one did
-  int digits = 0;      // decimal digits requested
-  int precision_bits = 0;
-  std::string reference_method, reference_tolerance, reference_cross_check;
-  std::string reference_error_estimate;  // measured at T, from the cross-check
-  ReferenceCheck reference_check;
-  std::vector<ClaimResult> claims;
-  SweepRecord sweep;
-  // docs/theory.md (observed orders): bits >= −log2(smallest error) + guard. The smallest error of
-  // any order-fitted series, and the guard bits the precision leaves below it.
-  std::string smallest_error;
-  double guard_bits = 0;
-  double seconds = 0;
-};
 
 // Runs `spec` in its scalar (MPFR with `digits` decimal digits, the case's own
 // unless overridden). Solver failures, non-regular Lagrangians and declared orders

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "harness/run_case.hpp"
+#include "reports/results.hpp"
 
 namespace vivv {
 

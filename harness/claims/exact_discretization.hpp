@@ -10,7 +10,7 @@
 
 namespace vivv {
 
-struct ExactDiscretizationClaim {
+struct ExactDiscretizationClaim : Claim<ExactDiscretizationClaim> {
   static constexpr const char* id = "exact-discretization";
   static constexpr const char* source = "paper Lemma 5.2, Thm 5.3";
   static constexpr const char* prediction =
@@ -21,21 +21,13 @@ struct ExactDiscretizationClaim {
   // times the reference tolerance, relative to the state's size, bounds them all.
   static constexpr int tolerance_factor = 10;
 
-  // Exactness, not an order.
-  template <LagrangianSystem System>
-  static std::optional<int> theorem_order(const CaseContext<System>&) {
-    return std::nullopt;
-  }
-
   template <LagrangianSystem System>
   static ClaimResult evaluate(const CaseContext<System>& context) {
     using T = typename System::Scalar;
     constexpr int n = System::dimension;
     using std::max;
-    ClaimResult claim = claim_result_for(id, source, prediction);
-    std::vector<T> gaps;
-    bool all_hold = true;
-    nlohmann::json rows = nlohmann::json::array();
+    ClaimResult claim = result();
+    PerStepCheck<T> check;
     // Erratum: Lemma 5.2 as printed sets ṽ = F_{α+(h)}(v); the constraint F_{α+}(v) = F_{α−}(ṽ)
     // gives ṽ = F_{α+ − α−}(v) = F_h(v). The two differ unless θ = 0: measure both.
     const T theta = context.tq->theta;
@@ -44,16 +36,8 @@ struct ExactDiscretizationClaim {
       context.report("exact-discretization at h = " + to_decimal<T>(h));
       State<T, n> exact = context.exact(h);
       const State<T, n> evolved = tq_map(context, *context.tq, h);
-      T gap = state_distance(evolved, exact);
       T scale = max(T(1), max(max_norm<T, n>(exact.q), max_norm<T, n>(exact.w)));
-      T tolerance = tolerance_factor * context.reference.tolerance() * scale;
-      bool holds = gap <= tolerance;
-      all_hold = all_hold && holds;
-      gaps.push_back(gap);
-      rows.push_back({{"h", to_decimal<T>(h)},
-                      {"difference", to_decimal<T>(gap)},
-                      {"tolerance", to_decimal<T>(tolerance)},
-                      {"holds", holds}});
+      check.add(h, state_distance(evolved, exact), T(tolerance_factor * context.reference.tolerance() * scale));
       if (theta != 0)
         printed.push_back({{"h", to_decimal<T>(h)},
                            {"distance_to_F_alpha_plus",
@@ -64,16 +48,11 @@ struct ExactDiscretizationClaim {
           {"printed", "v~ = F_{alpha+(h)}(v)"},
           {"confirmed", "v~ = F_h(v): see per_step"},
           {"distance_of_the_evolution_to_F_alpha_plus", printed}};
-    claim.evidence["per_step"] = rows;
     claim.evidence["tolerance_rule"] = std::to_string(tolerance_factor) +
                                        " × reference tolerance × max(1, |F_h(v)|)";
-    Series series = make_series<T>("|F_h(v) − F^exact_h(v)| (exact discretization)", context.steps(),
-                                   gaps, context.floor(), std::nullopt, false, context.order_tolerance, context.fit_options);
-    series.holds = all_hold;
-    series.explanation = all_hold ? "equal to the flow at every h, to the reference tolerance"
-                                  : "the exact discretization's evolution is not the flow (see per-step evidence)";
-    claim.series.push_back(series);
-    conclude(claim);
+    check.conclude_claim(claim, context, "|F_h(v) − F^exact_h(v)| (exact discretization)",
+                         "equal to the flow at every h, to the reference tolerance",
+                         "the exact discretization's evolution is not the flow (see per-step evidence)");
     return claim;
   }
 };

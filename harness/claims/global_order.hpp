@@ -2,8 +2,7 @@
 // (Marsden–West Thm 2.3.1 item 1; the corollary of paper Thm 5.5).
 #pragma once
 
-#include "harness/case_context.hpp"
-#include "harness/series.hpp"
+#include "harness/claim.hpp"
 
 namespace vivv {
 
@@ -44,7 +43,7 @@ SweepRun<System> run_sweep(const CaseContext<System>& context, const DelScheme<t
   return run;
 }
 
-struct GlobalOrderClaim {
+struct GlobalOrderClaim : Claim<GlobalOrderClaim> {
   static constexpr const char* id = "global-order";
   static constexpr const char* source = "Marsden–West Thm 2.3.1 (1); paper Thm 5.5 corollary";
   static constexpr const char* prediction =
@@ -60,8 +59,7 @@ struct GlobalOrderClaim {
   static ClaimResult evaluate(const CaseContext<System>& context) {
     using T = typename System::Scalar;
     constexpr int n = System::dimension;
-    ClaimResult claim = claim_result_for(id, source, prediction);
-    const OrderPrediction predicted = context.predict(id, *theorem_order(context));
+    ClaimResult claim = result();
     SweepRun<System> run = run_sweep(context, context.scheme);
     State<T, n> final_state = context.exact(context.final_time);
     Vector<T, n> p_exact = momentum(context.system, final_state.q, final_state.w);
@@ -70,12 +68,9 @@ struct GlobalOrderClaim {
       q_error.push_back(max_norm<T, n>(run.q_final[i] - final_state.q));
       p_error.push_back(max_norm<T, n>(run.p_final[i] - p_exact));
     }
-    claim.series.push_back(make_series("|q_N − q(T)|", context.steps(), q_error, context.floor(),
-                                       predicted.order, predicted.exact, context.order_tolerance, context.fit_options));
-    claim.series.push_back(make_series(context.tq ? "|FL(v_N) − p(T)|" : "|p_end(q_{N−1}, q_N) − p(T)|",
-                                       context.steps(), p_error,
-                                       context.floor(), std::nullopt, false,
-                                       context.order_tolerance, context.fit_options));
+    claim.series.push_back(sweep_series(context, "|q_N − q(T)|", q_error, predicted(context)));
+    claim.series.push_back(sweep_series(
+        context, context.tq ? "|FL(v_N) − p(T)|" : "|p_end(q_{N−1}, q_N) − p(T)|", p_error, std::nullopt));
     conclude(claim);
     return claim;
   }

@@ -7,8 +7,7 @@
 //                     (paper §2.3).
 #pragma once
 
-#include "harness/case_context.hpp"
-#include "harness/series.hpp"
+#include "harness/claim.hpp"
 #include "references/exact_discrete_lagrangian.hpp"
 #include "references/lagrangian_error_expansion.hpp"
 
@@ -42,7 +41,7 @@ void add_signed_coefficient(ClaimResult& claim, const CaseContext<System>& conte
                                      distance, floor, 1.0, false, context.order_tolerance, context.fit_options));
 }
 
-struct LagrangianOrderClaim {
+struct LagrangianOrderClaim : Claim<LagrangianOrderClaim> {
   static constexpr const char* id = "lagrangian-order";
   static constexpr const char* source = "Marsden–West Def. 2.3.1; paper §2.2";
   static constexpr const char* prediction =
@@ -58,8 +57,7 @@ struct LagrangianOrderClaim {
   static ClaimResult evaluate(const CaseContext<System>& context) {
     using T = typename System::Scalar;
     constexpr int n = System::dimension;
-    ClaimResult claim = claim_result_for(id, source, prediction);
-    const OrderPrediction predicted = context.predict(id, *theorem_order(context));
+    ClaimResult claim = result();
     // L_d^E(q(0), q(h); h) by Newton shooting on the Taylor flow and the action
     // by composite Gauss–Legendre (references/exact_discrete_lagrangian.hpp).
     // Shooting must recover the solution's own initial velocity: that mismatch
@@ -79,9 +77,8 @@ struct LagrangianOrderClaim {
       using std::max;
       velocity_mismatch = max(velocity_mismatch, max_norm<T, n>(exact.w_begin - context.initial.w));
       nodes = exact.quadrature_nodes;
-      Point<T, n> q_b, q_e;
-      for (int i = 0; i < n; ++i) q_b[i] = context.initial.q[i], q_e[i] = q_end[i];
-      T discrete = discrete_lagrangian(context.system, context.scheme.future, q_b, q_e, h);
+      T discrete = discrete_lagrangian(context.system, context.scheme.future, as_point<T, n>(context.initial.q),
+                                       as_point<T, n>(q_end), h);
       signed_error.push_back(discrete - exact.value);
     }
     claim.evidence["exact_discrete_lagrangian"] =
@@ -91,8 +88,7 @@ struct LagrangianOrderClaim {
     using std::abs;
     std::vector<T> error;
     for (const T& e : signed_error) error.push_back(abs(e));
-    claim.series.push_back(make_series("|L_d − L_d^E|", context.steps(), error, context.floor(),
-                                       predicted.order, predicted.exact, context.order_tolerance, context.fit_options));
+    claim.series.push_back(sweep_series(context, "|L_d − L_d^E|", error, predicted(context)));
     if (context.scheme.future.rule == QxQRule::expression)
       claim.evidence["leading_coefficient_rule"] =
           "not compared: a formula L_d has no second statement here to expand independently";
@@ -103,7 +99,7 @@ struct LagrangianOrderClaim {
   }
 };
 
-struct LegendreOrderClaim {
+struct LegendreOrderClaim : Claim<LegendreOrderClaim> {
   static constexpr const char* id = "legendre-order";
   static constexpr const char* source = "Marsden–West Thm 2.3.1 (2) vs paper §2.3";
   static constexpr const char* prediction =
@@ -120,8 +116,8 @@ struct LegendreOrderClaim {
   static ClaimResult evaluate(const CaseContext<System>& context) {
     using T = typename System::Scalar;
     constexpr int n = System::dimension;
-    ClaimResult claim = claim_result_for(id, source, prediction);
-    const int predicted = context.predict(id, *theorem_order(context)).order;
+    ClaimResult claim = result();
+    const int r = predicted(context).order;
     Vector<T, n> p_start = momentum(context.system, context.initial.q, context.initial.w);
     std::vector<T> end_error, begin_error, difference;
     for (const T& h : context.steps()) {
@@ -135,14 +131,10 @@ struct LegendreOrderClaim {
       difference.push_back(max_norm<T, n>(end_residual - begin_residual));
     }
     // The order is exact: observing r + 1 would confirm Marsden–West and refute the paper.
-    claim.series.push_back(make_series("|p_end(q(0), q(h)) − p(h)|", context.steps(), end_error,
-                                       context.floor(), predicted, true, context.order_tolerance, context.fit_options));
-    claim.series.push_back(make_series("|p_begin(q(0), q(h)) − p(0)|", context.steps(),
-                                       begin_error, context.floor(), predicted, true,
-                                       context.order_tolerance, context.fit_options));
-    claim.series.push_back(make_series("|(p_end − p(h)) − (p_begin − p(0))|", context.steps(),
-                                       difference, context.floor(), predicted + 1, false,
-                                       context.order_tolerance, context.fit_options));
+    claim.series.push_back(sweep_series(context, "|p_end(q(0), q(h)) − p(h)|", end_error, OrderPrediction{r, true}));
+    claim.series.push_back(sweep_series(context, "|p_begin(q(0), q(h)) − p(0)|", begin_error, OrderPrediction{r, true}));
+    claim.series.push_back(sweep_series(context, "|(p_end − p(h)) − (p_begin − p(0))|", difference,
+                                        OrderPrediction{r + 1, false}));
     conclude(claim);
     return claim;
   }

@@ -17,7 +17,7 @@
 
 namespace vivv {
 
-struct PastFutureSymmetryClaim {
+struct PastFutureSymmetryClaim : Claim<PastFutureSymmetryClaim> {
   static constexpr const char* id = "past-future-symmetry";
   static constexpr const char* source = "paper Thm 5.4 (proof), §2.6";
   static constexpr const char* prediction =
@@ -28,10 +28,7 @@ struct PastFutureSymmetryClaim {
   // segments of the first: the order of Δw; the symmetric residual's is r + 1.
   template <LagrangianSystem System>
   static std::optional<int> theorem_order(const CaseContext<System>& context) {
-    const auto& first_future = *context.tq;
-    const auto& first_past = context.tq_past ? *context.tq_past : first_future;
-    return std::min(contact_order(first_future, *context.tq_compare),
-                    contact_order(first_past, *context.tq_compare));
+    return ContactOrderClaim::mutual_order(context);
   }
 
   template <LagrangianSystem System>
@@ -39,12 +36,12 @@ struct PastFutureSymmetryClaim {
     using T = typename System::Scalar;
     constexpr int n = System::dimension;
     using std::max;
-    ClaimResult claim = claim_result_for(id, source, prediction);
+    ClaimResult claim = result();
     const auto& first_future = *context.tq;
     const auto& first_past = context.tq_past ? *context.tq_past : first_future;
     const auto& second = *context.tq_compare;
     const int r = *theorem_order(context);
-    const OrderPrediction predicted = context.predict(id, r);
+    const OrderPrediction order = predicted(context);
     std::vector<T> difference, asymmetry;
     nlohmann::json rows = nlohmann::json::array();
     for (const T& h : context.steps()) {
@@ -68,11 +65,9 @@ struct PastFutureSymmetryClaim {
     claim.evidence["mismatched_first_pair"] = context.tq_past.has_value();
     claim.evidence["per_step"] = rows;
     // The symmetric residual is the claim's main measurement; the graph difference beside it.
-    claim.series.push_back(make_series("|Δw − Δw̃| (symmetric residual)", context.steps(), asymmetry,
-                                       context.floor(), predicted.order + 1, predicted.exact,
-                                       context.order_tolerance, context.fit_options));
-    claim.series.push_back(make_series("max(|Δw|, |Δw̃|)", context.steps(), difference, context.floor(),
-                                       predicted.order, predicted.exact, context.order_tolerance, context.fit_options));
+    claim.series.push_back(sweep_series(context, "|Δw − Δw̃| (symmetric residual)", asymmetry,
+                                        OrderPrediction{order.order + 1, order.exact}));
+    claim.series.push_back(sweep_series(context, "max(|Δw|, |Δw̃|)", difference, order));
     conclude(claim);
     return claim;
   }

@@ -11,8 +11,7 @@
 
 #include <cmath>
 
-#include "harness/case_context.hpp"
-#include "harness/series.hpp"
+#include "harness/claim.hpp"
 
 namespace vivv {
 
@@ -29,7 +28,7 @@ State<typename System::Scalar, System::dimension> tq_map(const CaseContext<Syste
   return step.next;
 }
 
-struct LocalOrderClaim {
+struct LocalOrderClaim : Claim<LocalOrderClaim> {
   static constexpr const char* id = "order";
   static constexpr const char* source = "paper Thm 5.5";
   static constexpr const char* prediction =
@@ -44,23 +43,18 @@ struct LocalOrderClaim {
   template <LagrangianSystem System>
   static ClaimResult evaluate(const CaseContext<System>& context) {
     using T = typename System::Scalar;
-    ClaimResult claim = claim_result_for(id, source, prediction);
-    const OrderPrediction predicted = context.predict(id, *theorem_order(context));
-    std::vector<T> error;
-    for (const T& h : context.steps()) {
-      context.report("order: local error at h = " + to_decimal<T>(h));
-      error.push_back(state_distance(tq_map(context, *context.tq, h), context.exact(h)));
-    }
+    ClaimResult claim = result();
+    std::vector<T> error = measure_each_step(context, "order: local error", [&](const T& h) {
+      return state_distance(tq_map(context, *context.tq, h), context.exact(h));
+    });
     claim.evidence["evolution_order_r"] = context.map_order();
-    claim.series.push_back(make_series("|F_h(v) − F^exact_h(v)|", context.steps(), error,
-                                       context.floor(), predicted.order, predicted.exact,
-                                       context.order_tolerance, context.fit_options));
+    claim.series.push_back(sweep_series(context, "|F_h(v) − F^exact_h(v)|", error, predicted(context)));
     conclude(claim);
     return claim;
   }
 };
 
-struct ContactOrderClaim {
+struct ContactOrderClaim : Claim<ContactOrderClaim> {
   static constexpr const char* id = "contact-order";
   static constexpr const char* source = "paper Thm 5.4";
   static constexpr const char* prediction =
@@ -85,27 +79,22 @@ struct ContactOrderClaim {
   template <LagrangianSystem System>
   static ClaimResult evaluate(const CaseContext<System>& context) {
     using T = typename System::Scalar;
-    ClaimResult claim = claim_result_for(id, source, prediction);
+    ClaimResult claim = result();
     const int r = mutual_order(context);
-    const OrderPrediction predicted = context.predict(id, *theorem_order(context));
-    std::vector<T> difference;
-    for (const T& h : context.steps()) {
-      context.report("contact-order at h = " + to_decimal<T>(h));
-      difference.push_back(state_distance(tq_map(context, *context.tq, h, context.tq_past ? &*context.tq_past : nullptr),
-                                          tq_map(context, *context.tq_compare, h)));
-    }
+    std::vector<T> difference = measure_each_step(context, "contact-order", [&](const T& h) {
+      return state_distance(tq_map(context, *context.tq, h, context.tq_past ? &*context.tq_past : nullptr),
+                            tq_map(context, *context.tq_compare, h));
+    });
     claim.evidence["contact_order_r"] = r;
     claim.evidence["mismatched_first_evolution"] = context.tq_past.has_value();
     claim.evidence["orders_against_exact"] = {nominal_order(*context.tq), nominal_order(*context.tq_compare)};
-    claim.series.push_back(make_series("|F²_h(v) − F¹_h(v)|", context.steps(), difference,
-                                       context.floor(), predicted.order, predicted.exact,
-                                       context.order_tolerance, context.fit_options));
+    claim.series.push_back(sweep_series(context, "|F²_h(v) − F¹_h(v)|", difference, predicted(context)));
     conclude(claim);
     return claim;
   }
 };
 
-struct QxQTQEquivalenceClaim {
+struct QxQTQEquivalenceClaim : Claim<QxQTQEquivalenceClaim> {
   static constexpr const char* id = "qxq-tq-equivalence";
   static constexpr const char* source = "paper §6, Lemma 6.1";
   static constexpr const char* prediction =
@@ -113,27 +102,14 @@ struct QxQTQEquivalenceClaim {
       "Psi(v) = (d−(v), d+(v)), to working precision";
   static constexpr int compared_steps = 8;
 
-  // An identity, not an order.
-  template <LagrangianSystem System>
-  static std::optional<int> theorem_order(const CaseContext<System>&) {
-    return std::nullopt;
-  }
-
   template <LagrangianSystem System>
   static ClaimResult evaluate(const CaseContext<System>& context) {
     using T = typename System::Scalar;
     constexpr int n = System::dimension;
     using std::max;
-    ClaimResult claim = claim_result_for(id, source, prediction);
+    ClaimResult claim = result();
     const auto& d = *context.tq;
-    auto as_vector = [](const Point<T, n>& p) {
-      Vector<T, n> v;
-      for (int i = 0; i < n; ++i) v[i] = p[i];
-      return v;
-    };
-    std::vector<T> gaps;
-    bool all_hold = true;
-    nlohmann::json rows = nlohmann::json::array();
+    PerStepCheck<T> check;
     for (const T& h : context.steps()) {
       context.report("qxq-tq-equivalence at h = " + to_decimal<T>(h));
       // A past_discretization makes the TQ steps mismatched: the negative control.
@@ -142,40 +118,26 @@ struct QxQTQEquivalenceClaim {
       // The DEL from Psi(v_0) = (d−(v_0), d+(v_0)).
       auto v0 = tangent_point(states[0]);
       auto del = del_trajectory(context.system, matched_scheme(d.qxq),
-                                as_vector(d_minus<T, n>(d, v0, h)), as_vector(d_plus<T, n>(d, v0, h)),
+                                as_vector<T, n>(d_minus<T, n>(d, v0, h)), as_vector<T, n>(d_plus<T, n>(d, v0, h)),
                                 h, compared_steps + 1);
       T gap = 0, scale = 1;
       for (int k = 0; k <= compared_steps; ++k) {
         auto v = tangent_point(states[k]);
-        gap = max(gap, max_norm<T, n>(as_vector(d_minus<T, n>(d, v, h)) - del.q[k]));
-        gap = max(gap, max_norm<T, n>(as_vector(d_plus<T, n>(d, v, h)) - del.q[k + 1]));
+        gap = max(gap, max_norm<T, n>(as_vector<T, n>(d_minus<T, n>(d, v, h)) - del.q[k]));
+        gap = max(gap, max_norm<T, n>(as_vector<T, n>(d_plus<T, n>(d, v, h)) - del.q[k + 1]));
         scale = max(scale, max_norm<T, n>(del.q[k]));
       }
       // Both evolutions round at each of their Newton solves (64 ulps each).
-      T tolerance = 1024 * T(compared_steps) * epsilon<T>() * scale;
-      bool holds = gap <= tolerance;
-      all_hold = all_hold && holds;
-      gaps.push_back(gap);
-      rows.push_back({{"h", to_decimal<T>(h)},
-                      {"steps_compared", compared_steps},
-                      {"max_difference", to_decimal<T>(gap)},
-                      {"tolerance", to_decimal<T>(tolerance)},
-                      {"holds", holds}});
+      check.add(h, gap, T(1024 * T(compared_steps) * epsilon<T>() * scale), {{"steps_compared", compared_steps}});
     }
-    claim.evidence["per_step"] = rows;
     claim.evidence["mismatched_tq_steps"] = context.tq_past.has_value();
-    Series series = make_series<T>("max_k |Psi(v_k) − (q_k, q_{k+1})|", context.steps(), gaps,
-                                   context.floor(), std::nullopt, false, context.order_tolerance, context.fit_options);
-    series.holds = all_hold;
-    series.explanation = all_hold ? "equal to working precision at every h"
-                                  : "the TQ and Q×Q evolutions differ (see per-step evidence)";
-    claim.series.push_back(series);
-    conclude(claim);
+    check.conclude_claim(claim, context, "max_k |Psi(v_k) − (q_k, q_{k+1})|", "equal to working precision at every h",
+                         "the TQ and Q×Q evolutions differ (see per-step evidence)");
     return claim;
   }
 };
 
-struct ExistenceUniquenessClaim {
+struct ExistenceUniquenessClaim : Claim<ExistenceUniquenessClaim> {
   static constexpr const char* id = "existence-uniqueness";
   static constexpr const char* source = "paper Thm 4.2";
   static constexpr const char* prediction =
@@ -266,8 +228,7 @@ struct ExistenceUniquenessClaim {
   static ClaimResult evaluate(const CaseContext<System>& context) {
     using T = typename System::Scalar;
     constexpr int n = System::dimension;
-    ClaimResult claim = claim_result_for(id, source, prediction);
-    const OrderPrediction predicted = context.predict(id, *theorem_order(context));
+    ClaimResult claim = result();
     // F_h(v) − v over the sweep: order at least 1; at each h the critical point is unique near
     // the diagonal. Here a failed solve is the measured outcome, not bad input.
     std::vector<T> displacement;
@@ -298,8 +259,7 @@ struct ExistenceUniquenessClaim {
     claim.evidence["uniqueness_search"] =
         "Newton (<= 30 iterations) from (w, w) ± (1 + |w|)/4 along each blown-up unknown (z, w~); "
         "every start that converges must land on F_h(v)";
-    claim.series.push_back(make_series("|F_h(v) − v|", context.steps(), displacement, context.floor(),
-                                       predicted.order, predicted.exact, context.order_tolerance, context.fit_options));
+    claim.series.push_back(sweep_series(context, "|F_h(v) − v|", displacement, predicted(context)));
     // h_max against the speed |w|: Theorem 4.2 is semi-global, h_max(v) > 0 however fast v is;
     // h_max·|w| says how it falls.
     using std::ldexp;

@@ -42,50 +42,31 @@ std::pair<T, T> legendre_shift_error(const Transform& with, const Transform& pla
   return {error, scale};
 }
 
-struct TwinTermInvarianceClaim {
+struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
   static constexpr const char* id = "twin-term-invariance";
   static constexpr const char* source = "paper §2.2–2.3";
   static constexpr const char* prediction =
       "trajectories with the twin term a·h^s·(end − begin) and without it are identical to "
       "working precision; both Legendre transforms shift by exactly a·h^s";
 
-  // An identity, not an order.
-  template <LagrangianSystem System>
-  static std::optional<int> theorem_order(const CaseContext<System>&) {
-    return std::nullopt;
-  }
-
   template <LagrangianSystem System>
   static ClaimResult evaluate(const CaseContext<System>& context) {
     using T = typename System::Scalar;
-    ClaimResult claim = claim_result_for(id, source, prediction);
-    std::vector<TwinMeasurement<T>> measured = context.tq ? measure_tq(context) : measure_qxq(context);
-    bool all_hold = true;
-    nlohmann::json rows = nlohmann::json::array();
-    std::vector<T> trajectory_gap;
-    for (const auto& m : measured) {
-      bool holds = m.gap <= m.trajectory_tolerance && m.shift_error <= m.shift_tolerance;
-      all_hold = all_hold && holds;
-      trajectory_gap.push_back(m.gap);
-      rows.push_back({{"N", m.N},
-                      {"h", to_decimal<T>(m.h)},
-                      {"max_trajectory_difference", to_decimal<T>(m.gap)},
-                      {"trajectory_tolerance", to_decimal<T>(m.trajectory_tolerance)},
-                      {"legendre_shift", to_decimal<T>(m.shift)},
-                      {"legendre_shift_error", to_decimal<T>(m.shift_error)},
-                      {"legendre_shift_tolerance", to_decimal<T>(m.shift_tolerance)},
-                      {"holds", holds}});
-    }
-    claim.evidence["per_step"] = rows;
+    ClaimResult claim = result();
+    PerStepCheck<T> check;
+    // The trajectory difference is the measured value; the Legendre shift is checked beside it.
+    for (const auto& m : context.tq ? measure_tq(context) : measure_qxq(context))
+      check.add(m.h, m.gap, m.trajectory_tolerance,
+                {{"N", m.N},
+                 {"legendre_shift", to_decimal<T>(m.shift)},
+                 {"legendre_shift_error", to_decimal<T>(m.shift_error)},
+                 {"legendre_shift_tolerance", to_decimal<T>(m.shift_tolerance)}},
+                m.shift_error <= m.shift_tolerance);
     claim.evidence["formalism"] = context.tq ? "tq" : "qxq";
-    Series series = make_series<T>(context.tq ? "max_k |v_k(a) − v_k(0)|" : "max_k |q_k(a) − q_k(0)|",
-                                   context.steps(), trajectory_gap, context.floor(), std::nullopt, false,
-                                   context.order_tolerance, context.fit_options);
-    series.holds = all_hold;
-    series.explanation = all_hold ? "trajectories identical to working precision at every h"
-                                  : "the twin term changed the trajectory (see per-step evidence)";
-    claim.series.push_back(series);
-    conclude(claim);
+    check.conclude_claim(claim, context, context.tq ? "max_k |v_k(a) − v_k(0)|" : "max_k |q_k(a) − q_k(0)|",
+                         "trajectories identical to working precision at every h",
+                         "the twin term changed the trajectory or the Legendre shift is not a·h^s "
+                         "(see per-step evidence)");
     return claim;
   }
 
@@ -190,7 +171,7 @@ TwinMismatch<T> twin_mismatch(const std::optional<TwinTerm<T>>& future, const st
   return {};
 }
 
-struct MismatchedLegendreClaim {
+struct MismatchedLegendreClaim : Claim<MismatchedLegendreClaim> {
   static constexpr const char* id = "mismatched-legendre";
   static constexpr const char* source = "paper §2.3";
   static constexpr const char* prediction =
@@ -226,7 +207,7 @@ struct MismatchedLegendreClaim {
   static ClaimResult evaluate(const CaseContext<System>& context) {
     using T = typename System::Scalar;
     constexpr int n = System::dimension;
-    ClaimResult claim = claim_result_for(id, source, prediction);
+    ClaimResult claim = result();
     const auto& future = context.scheme.future;
     const auto& past = context.scheme.past;
     const bool same = same_rule(future, past);
@@ -240,16 +221,12 @@ struct MismatchedLegendreClaim {
     std::vector<T> error;
     for (const auto& q : run.q_final) error.push_back(max_norm<T, n>(q - final_state.q));
     if (order >= 1) {
-      const OrderPrediction predicted = context.predict(id, order);
-      claim.series.push_back(make_series("|q_N − q(T)| (original equation)", context.steps(), error,
-                                         context.floor(), predicted.order, predicted.exact,
-                                         context.order_tolerance, context.fit_options));
+      claim.series.push_back(sweep_series(context, "|q_N − q(T)| (original equation)", error, predicted(context)));
       conclude(claim);
       return claim;
     }
     // Inconsistent: the error against the original solution must not vanish…
-    Series original = make_series("|q_N − q(T)| (original equation)", context.steps(), error,
-                                  context.floor(), std::nullopt, false, context.order_tolerance, context.fit_options);
+    Series original = sweep_series(context, "|q_N − q(T)| (original equation)", error, std::nullopt);
     bool stalls = original.fit && original.fit->ok && original.fit->order < 0.5;
     original.holds = stalls;
     original.explanation = stalls ? "the error does not vanish as h → 0 (fitted order " +
@@ -281,9 +258,8 @@ struct MismatchedLegendreClaim {
     for (const auto& q : run.q_final) modified_error.push_back(max_norm<T, n>(q - modified_final.q));
     // The convergence to the modified solution is the claim's main measurement.
     claim.series.insert(claim.series.begin(),
-                        make_series("|q_N − q_mod(T)| (modified equation)", context.steps(),
-                                    modified_error, context.floor(), 1.0, false,
-                                    context.order_tolerance, context.fit_options));
+                        sweep_series(context, "|q_N − q_mod(T)| (modified equation)", modified_error,
+                                     OrderPrediction{1, false}));
     conclude(claim);
     return claim;
   }

@@ -1,0 +1,107 @@
+// The result model: what a run of vivv produced, as plain data. harness/
+// computes it, reports/ renders it (report.json, HTML, JUnit, the console
+// table); this header depends on neither, only on the case it describes.
+//
+// Results are independent of the scalar type: every number that came out of
+// a computation in the working precision is kept as a decimal string, so the
+// report loses nothing.
+#pragma once
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cases/case_file.hpp"
+
+namespace vivv {
+
+// A point left out of the fit: its index into the caller's arrays and why.
+using DroppedPoint = std::pair<int, std::string>;
+
+// The observed order of a sweep, with the evidence for it.
+struct OrderFit {
+  bool ok = false;               // false if fewer than 2 usable points (then `reason` explains)
+  std::string reason;            // empty when ok
+  double order = NAN;            // least-squares slope of log e against log h over the used points
+  double standard_error = NAN;   // of the slope; NaN with exactly 2 points
+  double confidence_low = NAN;   // order ∓ t·standard_error (Student's t, n − 2 degrees of
+  double confidence_high = NAN;  // freedom); ∓inf with exactly 2 points
+  double confidence = NAN;       // the level of that interval (FitOptions::confidence)
+  double log_constant = NAN;     // intercept: e ≈ C h^order, log C
+  std::vector<int> sorted;       // every index, by decreasing h (ties in the caller's order)
+  std::vector<double> pairwise_orders;  // between sorted[k] and sorted[k+1]; NaN where undefined
+  std::vector<int> used;                // indices used in the fit, ascending
+  // The last FitOptions::finest_orders pairwise orders between consecutive used points
+  // (largest h first): the small-h end, where an asymptotic statement lives.
+  std::vector<double> finest_orders;
+  std::vector<DroppedPoint> dropped;    // indices left out and why, ascending by index
+  std::vector<std::string> notes;       // what the reader should know but no rule acted on
+};
+
+// One measured quantity over the step sweep, with its fitted order.
+struct Series {
+  std::string label;               // what was measured, e.g. "|q_N − q(T)|"
+  std::vector<std::string> h;      // step sizes, decimal strings
+  std::vector<std::string> error;  // measured errors, decimal strings
+  std::string floor;               // error level treated as round-off / reference floor
+  std::optional<OrderFit> fit;
+  std::optional<double> predicted_order;
+  bool exact_order = false;        // predicted order is exact, not a lower bound
+  std::optional<bool> holds;       // verdict of this series alone
+  std::string explanation;
+};
+
+struct ClaimResult {
+  std::string id;
+  std::string source;      // where the theory states it (paper / Marsden–West)
+  std::string prediction;  // what the theory predicts, in words
+  // "pass", "fail", "error" (the measurement cannot be trusted), or for a claim
+  // the case marks as a known failure "xfail" (it failed) / "xpass" (it passed).
+  std::string verdict;
+  std::string explanation; // why, in one or two sentences
+  std::string xfail_reason;  // the case's reason, when it marks the claim as a known failure
+  std::vector<Series> series;  // series[0] is the claim's main measurement
+  nlohmann::json evidence = nlohmann::json::object();
+};
+
+// What the case's reference flow promises and what its own cross-check measured.
+struct ReferenceCheck {
+  std::string tolerance;       // promised: |error_i| <= tolerance·(1 + |y_i|)
+  std::string error_estimate;  // measured at T by the independent cross-check
+  std::string allowed;         // (tolerance + the check's own)·(1 + |F_T(v)|_max): what the estimate may reach
+  bool holds = true;
+};
+
+// The step sweep a case actually used: with --refine (or "refine": true) h is
+// halved until every order-fitted series settles, within a stated budget.
+struct SweepRecord {
+  static constexpr int max_refinements = 4;     // at most 4 halvings of h beyond the case's own sweep
+  static constexpr long max_steps = 1000000;    // and N never beyond the case file's limit
+  bool refine = false;
+  std::vector<int> requested_steps;  // as the case file gives them
+  std::string stopped;               // why refinement stopped (empty without --refine)
+};
+
+struct CaseResult {
+  CaseSpec spec;
+  std::string scalar;          // "double", "long double", "float128" or "mpfr"
+  std::string implementation;  // how L was run: compiled, a formula, a catalogue system's formula twin
+  std::string formula;         // the formula of L that ran, if one did
+  int digits = 0;      // decimal digits requested
+  int precision_bits = 0;
+  std::string reference_method, reference_tolerance, reference_cross_check;
+  std::string reference_error_estimate;  // measured at T, from the cross-check
+  ReferenceCheck reference_check;
+  std::vector<ClaimResult> claims;
+  SweepRecord sweep;
+  // docs/theory.md (observed orders): bits >= −log2(smallest error) + guard. The smallest error of
+  // any order-fitted series, and the guard bits the precision leaves below it.
+  std::string smallest_error;
+  double guard_bits = 0;
+  double seconds = 0;
+};
+
+}  // namespace vivv
