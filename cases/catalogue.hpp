@@ -28,14 +28,14 @@ inline const std::vector<std::string>& claim_ids() {
   static const std::vector<std::string> ids = {
       "global-order",       "lagrangian-order",    "legendre-order", "twin-term-invariance",
       "mismatched-legendre", "order",              "contact-order",  "qxq-tq-equivalence",
-      "existence-uniqueness", "exact-discretization", "past-future-symmetry"};
+      "existence-uniqueness", "exact-discretization", "past-future-symmetry", "symplecticity"};
   return ids;
 }
 
 // Claims stated for Q×Q discrete Lagrangians only.
 inline const std::set<std::string>& qxq_claim_ids() {
   static const std::set<std::string> ids = {"lagrangian-order", "legendre-order",
-                                            "mismatched-legendre"};
+                                            "mismatched-legendre", "symplecticity"};
   return ids;
 }
 

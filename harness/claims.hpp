@@ -11,6 +11,7 @@
 #include "harness/claims/global_order.hpp"
 #include "harness/claims/local_consistency.hpp"
 #include "harness/claims/past_future_symmetry.hpp"
+#include "harness/claims/symplecticity.hpp"
 #include "harness/claims/tq_claims.hpp"
 #include "harness/claims/twin_term.hpp"
 
@@ -19,7 +20,8 @@ namespace vivv {
 using ClaimRegistry =
     std::tuple<GlobalOrderClaim, LagrangianOrderClaim, LegendreOrderClaim, TwinTermInvarianceClaim,
                MismatchedLegendreClaim, LocalOrderClaim, ContactOrderClaim, QxQTQEquivalenceClaim,
-               ExistenceUniquenessClaim, ExactDiscretizationClaim, PastFutureSymmetryClaim>;
+               ExistenceUniquenessClaim, ExactDiscretizationClaim, PastFutureSymmetryClaim,
+               SymplecticityClaim>;
 
 struct ClaimInfo {
   std::string id, source, prediction;

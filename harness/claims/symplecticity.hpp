@@ -1,0 +1,83 @@
+// symplecticity (Marsden–West §1.3.2): the DEL of a discrete Lagrangian is, on
+// (q, p), a symplectic map: its Jacobian J satisfies JᵀΩJ = Ω at every step,
+// to working precision — not as h → 0, at every h. J comes from the implicit
+// function theorem with the Hessian blocks of L_d (core/symplectic.hpp). Two
+// different rules on the DEL's two sides (a past_discretization) make a map
+// that is not symplectic: the defect is the difference of their mixed blocks
+// through B_e⁻¹, O(h²) and far above rounding (the claim's negative control).
+#pragma once
+
+#include "core/symplectic.hpp"
+#include "harness/claim.hpp"
+#include "harness/claims/global_order.hpp"
+
+namespace vivv {
+
+struct SymplecticityClaim : Claim<SymplecticityClaim> {
+  static constexpr const char* id = "symplecticity";
+  static constexpr const char* source = "Marsden–West §1.3.2";
+  static constexpr const char* prediction =
+      "the DEL map (q_k, p_k) ↦ (q_{k+1}, p_{k+1}) is symplectic, JᵀΩJ = Ω, at every step and every h "
+      "to working precision; so is its N-step composition";
+  // Rounding allowance: the map's blocks come out of Hessian entries of size s ~ 1/h that cancel
+  // to O(1) and O(h) (B_e⁻¹·B_b, E_b + E_e·∂q'/∂q), each with an error of a few ulps of s, and
+  // JᵀΩJ multiplies two such: 1024·ε·s·max(1, |J|)² per step, N times that (with |Φ|²) for the
+  // composition Φ of N steps.
+  static constexpr int ulps = 1024;
+
+  template <LagrangianSystem System>
+  static ClaimResult evaluate(const CaseContext<System>& context) {
+    using T = typename System::Scalar;
+    constexpr int n = System::dimension;
+    using std::max;
+    ClaimResult claim = result();
+    PerStepCheck<T> check;
+    SweepRun<System> run = run_sweep(context, context.scheme, true);
+    const std::vector<T> steps = context.steps();
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+      const T& h = steps[i];
+      const auto& q = run.trajectories[i].q;
+      const int N = static_cast<int>(q.size()) - 1;
+      context.report("symplecticity: " + std::to_string(N) + " Jacobians at h = " + to_decimal<T>(h));
+      Matrix<T, 2 * n, 2 * n> composition = Matrix<T, 2 * n, 2 * n>::Identity();
+      T worst_ratio = -1, worst_defect = 0, worst_tolerance = 0, largest_defect = 0, step_tolerance = 0;
+      for (int k = 0; k < N; ++k) {
+        auto future = discrete_legendre(context.system, context.scheme.future, q[k], q[k + 1], h);
+        auto past = discrete_legendre(context.system, context.scheme.past, q[k], q[k + 1], h);
+        const Matrix<T, 2 * n, 2 * n> jacobian = del_map_jacobian<T, n>(future, past);
+        composition = jacobian * composition;
+        const T size = max({T(1), max_entry<T, n, n>(future.dp_begin_dq_b), max_entry<T, n, n>(future.dp_begin_dq_e),
+                            max_entry<T, n, n>(past.dp_end_dq_b), max_entry<T, n, n>(past.dp_end_dq_e)});
+        const T entry = max(T(1), max_entry<T, 2 * n, 2 * n>(jacobian));
+        const T tolerance = ulps * epsilon<T>() * size * entry * entry;
+        const T defect = symplecticity_defect<T, 2 * n>(jacobian);
+        step_tolerance = max(step_tolerance, tolerance);
+        largest_defect = max(largest_defect, defect);
+        if (defect / tolerance > worst_ratio) worst_ratio = defect / tolerance, worst_defect = defect, worst_tolerance = tolerance;
+      }
+      const T composed = max(T(1), max_entry<T, 2 * n, 2 * n>(composition));
+      const T composite_defect = symplecticity_defect<T, 2 * n>(composition);
+      const T composite_tolerance = T(N) * step_tolerance * composed * composed;
+      check.add(h, worst_defect, worst_tolerance,
+                {{"N", N},
+                 {"largest_step_defect", to_decimal<T>(largest_defect)},
+                 {"composite_defect", to_decimal<T>(composite_defect)},
+                 {"composite_tolerance", to_decimal<T>(composite_tolerance)}},
+                composite_defect <= composite_tolerance);
+    }
+    claim.evidence["jacobian"] =
+        "implicit function theorem: dq'/d(q, p) = B_e^-1 (-B_b, I), dp'/d(q, p) = (E_b, 0) + E_e dq'/d(q, p) "
+        "with B = d p_begin[L_d], E = d p_end[past L_d] at (q_k, q_k+1)";
+    claim.evidence["tolerance_rule"] = std::to_string(ulps) +
+                                       " ulps × max(1, |Hessian blocks|) × max(1, |J|)² per step (measured: the "
+                                       "step with the largest defect/tolerance); N × that × max(1, |J_N…J_1|)² "
+                                       "for the composition";
+    claim.evidence["mismatched_del"] = context.scheme.mismatched;
+    check.conclude_claim(claim, context, "max_k |J_kᵀΩJ_k − Ω| (worst step against its tolerance)",
+                         "symplectic to working precision at every step and every h, and so is the N-step map",
+                         "the (q, p) map is not symplectic (see per-step evidence)");
+    return claim;
+  }
+};
+
+}  // namespace vivv
