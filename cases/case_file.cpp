@@ -41,14 +41,20 @@ FormulaSystemDefinition catalogue_twin(const std::string& name,
       {"harmonic_oscillator", "w^2/2 - omega^2*q^2/2"},
       {"pendulum", "w^2/2 - k*(1 - cos(q))"},
       {"relativistic_particle", "-mass*sqrt(1 - w^2) - k*q^2/2"},
-      {"charged_particle", "(w1^2 + w2^2)/2 + B*(q1*w2 - q2*w1)/2 - k*(q1^2 + q2^2)/2"}};
+      {"charged_particle", "(w1^2 + w2^2)/2 + B*(q1*w2 - q2*w1)/2 - k*(q1^2 + q2^2)/2"},
+      {"kepler", "(w1^2 + w2^2)/2 + mu/sqrt(q1^2 + q2^2)"},
+      {"henon_heiles", "(w1^2 + w2^2)/2 - (q1^2 + q2^2)/2 - lambda*(q1^2*q2 - q2^3/3)"},
+      {"double_pendulum", "(m1 + m2)*l1^2*w1^2/2 + m2*l2^2*w2^2/2 + m2*l1*l2*w1*w2*cos(q1 - q2)"
+                          " + (m1 + m2)*g*l1*cos(q1) + m2*g*l2*cos(q2)"}};
   auto found = formulas.find(name);
   if (found == formulas.end()) throw std::invalid_argument("no formula twin for the system '" + name + "'");
   FormulaSystemDefinition definition;
   definition.name = name;
   definition.text = found->second;
   definition.lagrangian = parse_formula(found->second);
-  if (name == "charged_particle") {
+  const bool planar = name == "charged_particle" || name == "kepler" || name == "henon_heiles" ||
+                      name == "double_pendulum";
+  if (planar) {
     definition.coordinates = {"q1", "q2"};
     definition.velocities = {"w1", "w2"};
   } else {
@@ -56,6 +62,8 @@ FormulaSystemDefinition catalogue_twin(const std::string& name,
     definition.velocities = {"w"};
   }
   definition.parameters = parameters;
+  if (name == "charged_particle" || name == "kepler")  // rotations about the origin
+    definition.symmetry = {parse_formula("-q2"), parse_formula("q1")};
   return definition;
 }
 
@@ -359,6 +367,39 @@ void read_formula_system(Reader& system, CaseSpec& spec) {
   definition->lagrangian = *read_formula(system, "lagrangian", text);
   definition->text = text;
   spec.dimension = static_cast<int>(n);
+  std::vector<std::string> symmetry_texts;
+  if (system.has("symmetry")) {
+    symmetry_texts = system.strings("symmetry");
+    if (symmetry_texts.size() != n)
+      system.fail("symmetry", "expected the generator ξ(q) as " + std::to_string(n) +
+                                  " formulas, one per coordinate, got " + std::to_string(symmetry_texts.size()));
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::string field = "symmetry[" + std::to_string(i) + "]";
+      if (symmetry_texts[i].size() > longest_formula) system.fail(field, "formula too long");
+      try {
+        definition->symmetry.push_back(parse_formula(symmetry_texts[i]));
+      } catch (const FormulaError& error) {
+        system.fail(field, describe_formula_error(symmetry_texts[i], error));
+      }
+    }
+  }
+  // Each component of ξ alone, so that an error names its field: a scalar in the coordinates
+  // and parameters (the velocities are unknown names there).
+  for (std::size_t i = 0; i < symmetry_texts.size(); ++i) {
+    using V = TapeScalar<long double>;
+    TapeRecording<long double> recording(static_cast<int>(n));
+    FormulaScope<long double, V> scope;
+    for (std::size_t j = 0; j < n; ++j)
+      scope.names[definition->coordinates[j]] = FormulaValue<V>::scalar(recording.input(static_cast<int>(j)), false);
+    for (const auto& [name, value] : definition->parameters)
+      scope.names[name] = FormulaValue<V>::scalar(V(from_decimal<long double>(value)), true);
+    try {
+      if (interpret(definition->symmetry[i], scope).is_vector)
+        throw FormulaError(0, "expected a number, got a vector");
+    } catch (const FormulaError& error) {
+      system.fail("symmetry[" + std::to_string(i) + "]", describe_formula_error(symmetry_texts[i], error));
+    }
+  }
   try {
     switch (n) {
       case 1: make_formula_system<long double, 1>(*definition); break;
@@ -542,6 +583,23 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
         (pair && is_exact(&spec.discretization) && is_exact(compare)))
       throw CaseError(file, where, id + " measures an order, and an exact discretization has none: "
                                    "its claim is exact-discretization");
+    if (id == "discrete-noether") {
+      const auto catalogue = system_catalogue();
+      const bool symmetric =
+          spec.formula ? !spec.formula->symmetry.empty()
+                       : std::any_of(catalogue.begin(), catalogue.end(),
+                                     [&](const SystemInfo& info) { return info.name == spec.system && info.symmetric; });
+      if (!symmetric)
+        throw CaseError(file, where, "discrete-noether needs a system with a symmetry: '" + spec.system +
+                                         "' declares none (a formula system declares its generator as "
+                                         "system.symmetry, a formula per coordinate)");
+    }
+    if (id == "modified-energy" && !tq &&
+        ((spec.discretization.kind != "midpoint" && spec.discretization.kind != "trapezoid") ||
+         spec.discretization.twin))
+      throw CaseError(file, where, "modified-energy is derived for the midpoint and trapezoid rules without twin "
+                                   "terms, not for discretization.kind \"" + spec.discretization.kind + "\"" +
+                                   (spec.discretization.twin ? " with a twin term" : ""));
     if (id == "qxq-tq-equivalence" && (!tq || spec.discretization.tq->lagrangian != "pullback"))
       throw CaseError(file, where, "qxq-tq-equivalence needs a TQ discretization with lagrangian \"pullback\"");
   }

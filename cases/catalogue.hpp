@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cases/systems.hpp"
+#include "core/noether.hpp"
 #include "core/scalar.hpp"
 
 namespace vivv {
@@ -21,21 +22,24 @@ namespace vivv {
 // Every catalogue system, instantiated at scalar T.
 template <class T>
 using CatalogueSystems = std::tuple<PaperExample<T>, HarmonicOscillator<T>, Pendulum<T>,
-                                    RelativisticParticle<T>, ChargedParticle<T>>;
+                                    RelativisticParticle<T>, ChargedParticle<T>, Kepler<T>, HenonHeiles<T>,
+                                    DoublePendulum<T>>;
 
 // Claim ids a case may ask for (docs/claims.md); harness/claims.hpp implements each.
 inline const std::vector<std::string>& claim_ids() {
   static const std::vector<std::string> ids = {
       "global-order",       "lagrangian-order",    "legendre-order", "twin-term-invariance",
       "mismatched-legendre", "order",              "contact-order",  "qxq-tq-equivalence",
-      "existence-uniqueness", "exact-discretization", "past-future-symmetry", "symplecticity"};
+      "existence-uniqueness", "exact-discretization", "past-future-symmetry", "symplecticity",
+      "discrete-noether",   "energy-behaviour",    "modified-energy"};
   return ids;
 }
 
 // Claims stated for Q×Q discrete Lagrangians only.
 inline const std::set<std::string>& qxq_claim_ids() {
   static const std::set<std::string> ids = {"lagrangian-order", "legendre-order",
-                                            "mismatched-legendre", "symplecticity"};
+                                            "mismatched-legendre", "symplecticity",
+                                            "discrete-noether", "energy-behaviour", "modified-energy"};
   return ids;
 }
 
@@ -50,6 +54,7 @@ struct SystemInfo {
   std::string name;
   int dimension;
   std::vector<ParameterSpec> parameters;
+  bool symmetric = false;  // declares a symmetry (core/noether.hpp)
 };
 
 // Name, dimension and parameters of every catalogue system.
@@ -58,7 +63,7 @@ inline std::vector<SystemInfo> system_catalogue() {
   std::apply(
       [&](auto... system) {
         (info.push_back({decltype(system)::name, decltype(system)::dimension,
-                         decltype(system)::parameters()}),
+                         decltype(system)::parameters(), DeclaresSymmetry<decltype(system)>}),
          ...);
       },
       CatalogueSystems<double>{});

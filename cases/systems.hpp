@@ -112,6 +112,77 @@ struct ChargedParticle {
     return (w[0] * w[0] + w[1] * w[1]) / 2 + B * (q[0] * w[1] - q[1] * w[0]) / 2 -
            k * (q[0] * q[0] + q[1] * q[1]) / 2;
   }
+  // The generator of rotations, ξ(q) = (−q2, q1).
+  template <class S>
+  Point<S, 2> symmetry_generator(const Point<S, 2>& q) const {
+    return {-q[1], q[0]};
+  }
+};
+
+// L = ½ |w|² + μ / |q|: the Kepler problem in the plane. Rotations about the
+// origin are a symmetry, with momentum map the angular momentum q1 p2 − q2 p1.
+template <class T>
+struct Kepler {
+  using Scalar = T;
+  static constexpr int dimension = 2;
+  static constexpr const char* name = "kepler";
+  static std::vector<ParameterSpec> parameters() { return {{"mu", "1"}}; }
+  T mu = 1;
+  void set(const std::vector<T>& p) { mu = p[0]; }
+
+  template <class S>
+  S lagrangian(const Point<S, 2>& q, const Point<S, 2>& w) const {
+    using std::sqrt;
+    return (w[0] * w[0] + w[1] * w[1]) / 2 + mu / sqrt(q[0] * q[0] + q[1] * q[1]);
+  }
+  // The generator of rotations, ξ(q) = (−q2, q1).
+  template <class S>
+  Point<S, 2> symmetry_generator(const Point<S, 2>& q) const {
+    return {-q[1], q[0]};
+  }
+};
+
+// L = ½ |w|² − ½ |q|² − λ (x² y − y³/3): Hénon–Heiles, non-integrable, chaotic
+// above energy about 1/8 (for λ = 1).
+template <class T>
+struct HenonHeiles {
+  using Scalar = T;
+  static constexpr int dimension = 2;
+  static constexpr const char* name = "henon_heiles";
+  static std::vector<ParameterSpec> parameters() { return {{"lambda", "1"}}; }
+  T lambda = 1;
+  void set(const std::vector<T>& p) { lambda = p[0]; }
+
+  template <class S>
+  S lagrangian(const Point<S, 2>& q, const Point<S, 2>& w) const {
+    const S& x = q[0];
+    const S& y = q[1];
+    return (w[0] * w[0] + w[1] * w[1]) / 2 - (x * x + y * y) / 2 - lambda * (x * x * y - y * y * y / 3);
+  }
+};
+
+// The planar double pendulum, angles q1, q2 from the downward vertical:
+// L = ½ (m1 + m2) l1² w1² + ½ m2 l2² w2² + m2 l1 l2 w1 w2 cos(q1 − q2)
+//     + (m1 + m2) g l1 cos q1 + m2 g l2 cos q2.
+// Its mass matrix depends on q: the DEL and the Legendre map are nonlinear in w.
+template <class T>
+struct DoublePendulum {
+  using Scalar = T;
+  static constexpr int dimension = 2;
+  static constexpr const char* name = "double_pendulum";
+  static std::vector<ParameterSpec> parameters() {
+    return {{"m1", "1"}, {"m2", "1"}, {"l1", "1"}, {"l2", "1"}, {"g", "1"}};
+  }
+  T m1 = 1, m2 = 1, l1 = 1, l2 = 1, g = 1;
+  void set(const std::vector<T>& p) { m1 = p[0], m2 = p[1], l1 = p[2], l2 = p[3], g = p[4]; }
+
+  template <class S>
+  S lagrangian(const Point<S, 2>& q, const Point<S, 2>& w) const {
+    using std::cos;
+    const T m = m1 + m2;
+    return m * l1 * l1 * w[0] * w[0] / 2 + m2 * l2 * l2 * w[1] * w[1] / 2 +
+           m2 * l1 * l2 * w[0] * w[1] * cos(q[0] - q[1]) + m * g * l1 * cos(q[0]) + m2 * g * l2 * cos(q[1]);
+  }
 };
 
 }  // namespace vivv

@@ -28,6 +28,9 @@ struct FormulaSystemDefinition {
   FormulaNode lagrangian;
   std::vector<std::string> coordinates, velocities;
   std::vector<std::pair<std::string, std::string>> parameters;
+  // The generator ξ(q) of a symmetry of L, a formula per coordinate in the
+  // coordinates and parameters (core/noether.hpp); empty: none declared.
+  std::vector<FormulaNode> symmetry;
 };
 
 template <class T, int n>
@@ -42,6 +45,15 @@ struct FormulaSystem {
     std::array<S, 2 * n> x;
     for (int i = 0; i < n; ++i) x[i] = q[i], x[n + i] = w[i];
     return program->evaluate_first(x.data());
+  }
+
+  std::shared_ptr<const Tape<T>> symmetry;  // inputs q_1 … q_n; outputs ξ_1 … ξ_n; null: none declared
+  bool has_symmetry() const { return symmetry != nullptr; }
+  Point<T, n> symmetry_generator(const Point<T, n>& q) const {
+    const std::vector<T> xi = symmetry->evaluate(std::vector<T>(q.begin(), q.end()));
+    Point<T, n> generator;
+    for (int i = 0; i < n; ++i) generator[i] = xi[i];
+    return generator;
   }
 };
 
@@ -70,6 +82,22 @@ FormulaSystem<T, n> make_formula_system(const FormulaSystemDefinition& definitio
   const FormulaValue<TapeScalar<T>> value = interpret(definition.lagrangian, scope);
   FormulaSystem<T, n> system;
   system.program = std::make_shared<const Tape<T>>(recording.finish({value.components[0]}));
+  if (!definition.symmetry.empty()) {
+    TapeRecording<T> generator(n);
+    std::vector<TapeScalar<T>> x;
+    for (int i = 0; i < n; ++i) x.push_back(generator.input(i));
+    FormulaScope<T, TapeScalar<T>> coordinates;  // the coordinates and parameters, no velocities
+    for (int i = 0; i < n; ++i) coordinates.names[definition.coordinates[i]] = FormulaValue<TapeScalar<T>>::scalar(x[i], false);
+    for (const auto& [name, value] : definition.parameters)
+      coordinates.names[name] = FormulaValue<TapeScalar<T>>::scalar(TapeScalar<T>(from_decimal<T>(value)), true);
+    std::vector<TapeScalar<T>> components;
+    for (const FormulaNode& component : definition.symmetry) {
+      const FormulaValue<TapeScalar<T>> xi = interpret(component, coordinates);
+      if (xi.components.size() != 1) throw FormulaError(0, "a component of the symmetry must be a number");
+      components.push_back(xi.components[0]);
+    }
+    system.symmetry = std::make_shared<const Tape<T>>(generator.finish(components));
+  }
   return system;
 }
 

@@ -7,9 +7,12 @@
 #include <tuple>
 #include <vector>
 
+#include "harness/claims/discrete_noether.hpp"
+#include "harness/claims/energy_behaviour.hpp"
 #include "harness/claims/exact_discretization.hpp"
 #include "harness/claims/global_order.hpp"
 #include "harness/claims/local_consistency.hpp"
+#include "harness/claims/modified_energy.hpp"
 #include "harness/claims/past_future_symmetry.hpp"
 #include "harness/claims/symplecticity.hpp"
 #include "harness/claims/tq_claims.hpp"
@@ -21,7 +24,8 @@ using ClaimRegistry =
     std::tuple<GlobalOrderClaim, LagrangianOrderClaim, LegendreOrderClaim, TwinTermInvarianceClaim,
                MismatchedLegendreClaim, LocalOrderClaim, ContactOrderClaim, QxQTQEquivalenceClaim,
                ExistenceUniquenessClaim, ExactDiscretizationClaim, PastFutureSymmetryClaim,
-               SymplecticityClaim>;
+               SymplecticityClaim, DiscreteNoetherClaim, EnergyBehaviourClaim,
+               ModifiedEnergyClaim>;
 
 struct ClaimInfo {
   std::string id, source, prediction;

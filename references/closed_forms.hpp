@@ -14,6 +14,19 @@
 // the separatrix and in rotation uses the symmetry (q, w) ↦ (−q, −w); k = 0 is
 // free motion and k < 0 is the inverted pendulum, the pendulum in q − π.
 //
+// Kepler L = ½|w|² + μ/|q| on a bound orbit (energy < 0), through Kepler's
+// equation in difference form (Battin §4.5; Danby ch. 6). With r0 = |q0|,
+// σ0 = q0·w0, 1/a = 2/r0 − |w0|²/μ, n = √(μ/a³), C = 1 − r0/a = e cos E0 and
+// S = σ0/√(μa) = e sin E0, the change x = E − E0 of the eccentric anomaly
+// after time t solves
+//   x − C sin x + S (1 − cos x) = n t
+// (Newton, Boost.Math, in the working precision; the left side's derivative is
+// r/a ≥ 1 − e > 0), and the Lagrange coefficients give the state:
+//   r = a (1 − C cos x + S sin x),
+//   q = f q0 + g w0,   f = 1 − (a/r0)(1 − cos x),  g = t − (x − sin x)/n,
+//   w = ḟ q0 + ġ w0,   ḟ = −√(μa) sin x / (r r0),   ġ = 1 − (a/r)(1 − cos x).
+// t is first reduced modulo the period 2π/n.
+//
 // Boost's dn(u, κ) = cos φ₀ / cos(φ₁ − φ₀) loses most digits near u = K (both
 // factors vanish), so dn is always taken from dn² = κ'² + κ² cn², whose terms
 // are both positive, with κ'² = 1 − κ² computed from the state as (c − v)(c + v).
@@ -24,6 +37,7 @@
 #include <boost/math/constants/constants.hpp>
 #include <boost/math/special_functions/ellint_1.hpp>
 #include <boost/math/special_functions/jacobi_elliptic.hpp>
+#include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -207,6 +221,58 @@ State<T, 1> pendulum_flow(const Pendulum<T>& system, const State<T, 1>& start, c
   auto [q0, turns] = closed_form_detail::reduce(T(start.q[0] - shift), T(2 * pi));
   State<T, 1> end = closed_form_detail::pendulum_flow_reduced(k_positive, q0, w0, t, motion);
   end.q[0] += 2 * pi * turns + shift;
+  return end;
+}
+
+// F_t(q0, w0) of the Kepler problem on a bound orbit (formulas at the top of the file).
+// Throws std::domain_error for an orbit that is not bound or passes through q = 0.
+template <class T>
+State<T, 2> kepler_flow(const Kepler<T>& system, const State<T, 2>& start, const T& t) {
+  using std::abs;
+  using std::cos;
+  using std::round;
+  using std::sin;
+  using std::sqrt;
+  const T& mu = system.mu;
+  const auto& q0 = start.q;
+  const auto& w0 = start.w;
+  const T r0 = sqrt(T(q0[0] * q0[0] + q0[1] * q0[1]));
+  const T sigma0 = q0[0] * w0[0] + q0[1] * w0[1];
+  const T inverse_a = 2 / r0 - (w0[0] * w0[0] + w0[1] * w0[1]) / mu;
+  const bool finite = closed_form_detail::finite(r0) && closed_form_detail::finite(sigma0) &&
+                      closed_form_detail::finite(inverse_a) && closed_form_detail::finite(t);
+  if (!finite || !(mu > 0) || !(r0 > 0) || !(inverse_a > 0))
+    throw std::domain_error("kepler_flow: the closed form needs mu > 0 and a bound orbit away from q = 0 (energy < "
+                            "0), got |q0| = " + to_decimal<T>(r0) + ", 1/a = " + to_decimal<T>(inverse_a));
+  const T a = 1 / inverse_a;
+  const T mean_motion = sqrt(mu * inverse_a * inverse_a * inverse_a);
+  const T C = 1 - r0 * inverse_a, S = sigma0 / sqrt(mu * a);
+  const T angular_momentum = q0[0] * w0[1] - q0[1] * w0[0];
+  if (angular_momentum == 0 || !(C * C + S * S < 1))
+    throw std::domain_error("kepler_flow: eccentricity " + to_decimal<T>(T(sqrt(T(C * C + S * S)))) +
+                            " >= 1: a radial orbit through q = 0");
+  const T period = 2 * boost::math::constants::pi<T>() / mean_motion;
+  const T reduced_t = t - period * round(t / period);
+  const T M = mean_motion * reduced_t;
+  // x − (C sin x − S (1 − cos x)) = M, and |C sin x − S (1 − cos x)| ≤ 2e < 2.
+  auto kepler_equation = [&](const T& x) {
+    return std::pair<T, T>(x - C * sin(x) + S * (1 - cos(x)) - M, 1 - C * cos(x) + S * sin(x));
+  };
+  std::uintmax_t iterations = 200;
+  const T x = boost::math::tools::newton_raphson_iterate(kepler_equation, M, T(M - 2), T(M + 2),
+                                                         precision_bits<T>() - 2, iterations);
+  if (iterations >= 200)
+    throw std::runtime_error("kepler_flow: Newton on Kepler's equation did not converge at t = " + to_decimal<T>(t));
+  const T half_sine = sin(x / 2);
+  const T one_minus_cos = 2 * half_sine * half_sine;
+  const T r = a * (1 - C * cos(x) + S * sin(x));
+  const T f = 1 - a / r0 * one_minus_cos;
+  const T g = reduced_t - (x - sin(x)) / mean_motion;
+  const T f_dot = -sqrt(mu * a) * sin(x) / (r * r0);
+  const T g_dot = 1 - a / r * one_minus_cos;
+  State<T, 2> end;
+  end.q = f * q0 + g * w0;
+  end.w = f_dot * q0 + g_dot * w0;
   return end;
 }
 

@@ -1,6 +1,6 @@
 // The near-exact flow F_t the harness measures every discretization against
 // (docs/theory.md): the closed form where one exists (harmonic oscillator,
-// pendulum), otherwise Gragg–Bulirsch–Stoer extrapolation to a requested
+// pendulum, Kepler), otherwise Gragg–Bulirsch–Stoer extrapolation to a requested
 // tolerance. It says which method it used, what accuracy it claims and how
 // that claim is backed up.
 //
@@ -29,7 +29,8 @@ namespace vivv {
 template <class System>
 inline constexpr bool has_closed_form_v =
     std::is_same_v<System, HarmonicOscillator<typename System::Scalar>> ||
-    std::is_same_v<System, Pendulum<typename System::Scalar>>;
+    std::is_same_v<System, Pendulum<typename System::Scalar>> ||
+    std::is_same_v<System, Kepler<typename System::Scalar>>;
 
 // Accuracy a closed form claims: 256 ε, before amplification by the flow's conditioning ‖DF_t‖.
 template <class T>
@@ -77,6 +78,8 @@ class ReferenceFlow {
       return harmonic_oscillator_flow(system_, start, t);
     } else if constexpr (std::is_same_v<System, Pendulum<T>>) {
       return pendulum_flow(system_, start, t);
+    } else if constexpr (std::is_same_v<System, Kepler<T>>) {
+      return kepler_flow(system_, start, t);
     } else {
       return extrapolation_flow(system_, start, t, effective_tolerance_).state;
     }
@@ -101,6 +104,8 @@ class ReferenceFlow {
       return "closed form: q0 cos(omega t) + (w0/omega) sin(omega t)";
     } else if constexpr (std::is_same_v<System, Pendulum<T>>) {
       return "closed form: Jacobi elliptic functions (Boost.Math sn, cn, F)";
+    } else if constexpr (std::is_same_v<System, Kepler<T>>) {
+      return "closed form: Kepler's equation in difference form (Boost.Math Newton), Lagrange f and g";
     } else {
       std::string text =
           "Gragg–Bulirsch–Stoer extrapolation, tol " + short_decimal(effective_tolerance_);

@@ -81,6 +81,20 @@ TEST_P(RunCaseScalarTest, EveryClaimOfAFormulaCaseRunsAndHolds) {
   }
 }
 
+// The structure claims on a catalogue system with a symmetry (outside MPFR its formula twin,
+// which declares the same generator): symplectic, momentum map and energy, in every scalar.
+TEST_P(RunCaseScalarTest, StructureClaimsRunAndHoldOnKepler) {
+  const std::string scalar = GetParam();
+  const std::vector<std::string> claims = {"symplecticity", "discrete-noether", "energy-behaviour"};
+  CaseResult result = run_case(case_in(scalar, {{"name", "kepler"}}, {{"kind", "midpoint"}}, claims,
+                                       {{"initial", {{"q", {"0.5", "0"}}, {"w", {"0", "1.5"}}}},
+                                        {"T", "12"},
+                                        {"steps", {150, 300, 600}}}),
+                               std::nullopt, false, {});
+  ASSERT_EQ(result.claims.size(), claims.size()) << scalar;
+  for (const auto& claim : result.claims) EXPECT_EQ(claim.verdict, "pass") << scalar << ": " << claim.id << ": " << claim.explanation;
+}
+
 // A catalogue system outside MPFR runs through its formula twin, and says so.
 TEST_P(RunCaseScalarTest, ACatalogueSystemSaysHowItRan) {
   const std::string scalar = GetParam();

@@ -239,5 +239,88 @@ TYPED_TEST(ClosedFormsTest, NonFiniteInputIsADomainError) {
   EXPECT_THROW(pendulum_flow(pendulum, state<T>("1", "0"), T(1)), std::domain_error);
 }
 
+// Kepler states at pericentre of eccentricity e (μ = 1, a = 1), rotated by an angle
+// so that both components move: q0 = (1 − e) R(φ) e1, w0 = √((1 + e)/(1 − e)) R(φ) e2.
+template <class T>
+State<T, 2> kepler_pericentre(const T& e, const T& angle) {
+  using std::cos;
+  using std::sin;
+  using std::sqrt;
+  State<T, 2> start;
+  const T r = 1 - e, v = sqrt(T((1 + e) / (1 - e)));
+  start.q << r * cos(angle), r * sin(angle);
+  start.w << -v * sin(angle), v * cos(angle);
+  return start;
+}
+
+template <class T>
+T kepler_energy(const State<T, 2>& v) {
+  using std::sqrt;
+  return v.w.squaredNorm() / 2 - 1 / sqrt(T(v.q.squaredNorm()));
+}
+template <class T>
+T angular_momentum(const State<T, 2>& v) {
+  return v.q[0] * v.w[1] - v.q[1] * v.w[0];
+}
+
+// Kepler's closed form agrees with the extrapolation flow from eccentricity 0 to 0.9, off
+// pericentre too (t = 2.3 starts the second case mid-orbit), and conserves energy and
+// angular momentum to working precision.
+TYPED_TEST(ClosedFormsTest, KeplerMatchesTheExtrapolationFlow) {
+  using T = TypeParam;
+  using std::abs;
+  Kepler<T> system;
+  const T tolerance = testing::reference_tolerance<T>();
+  for (const auto& [e, t] : std::vector<std::array<std::string, 2>>{{"0", "3"}, {"0.5", "7.5"}, {"0.9", "-4"}}) {
+    SCOPED_TRACE("e = " + e + ", t = " + t);
+    const State<T, 2> start = kepler_pericentre<T>(from_decimal<T>(e), T(1) / 3);
+    const State<T, 2> mid = kepler_flow(system, start, T(23) / 10);
+    for (const State<T, 2>& from : {start, mid}) {
+      const State<T, 2> closed = kepler_flow(system, from, from_decimal<T>(t));
+      const State<T, 2> integrated = extrapolation_flow(system, from, from_decimal<T>(t), tolerance).state;
+      // An eccentric orbit amplifies errors by its conditioning, here at most about 100.
+      EXPECT_TRUE(within_tolerance(integrated, closed, T(100 * tolerance)))
+          << "distance " << to_decimal<T>(state_distance(integrated, closed));
+      EXPECT_LE(abs(T(kepler_energy(closed) - kepler_energy(from))), 100 * this->working_tolerance());
+      EXPECT_LE(abs(T(angular_momentum(closed) - angular_momentum(from))), 100 * this->working_tolerance());
+    }
+  }
+}
+
+// After whole periods 2π (a = 1, μ = 1) the orbit is back where it started; half a period
+// from pericentre is apocentre, at −(1 + e)/(1 − e) times the pericentre position.
+TYPED_TEST(ClosedFormsTest, KeplerReturnsAfterAPeriodAndReachesApocentreAfterHalf) {
+  using T = TypeParam;
+  const T pi = boost::math::constants::pi<T>();
+  Kepler<T> system;
+  const T e = T(1) / 2;
+  const State<T, 2> start = kepler_pericentre<T>(e, T(1) / 3);
+  const State<T, 2> around = kepler_flow(system, start, T(3 * 2 * pi));
+  EXPECT_LE(state_distance(around, start), 100 * this->working_tolerance());
+  const State<T, 2> half = kepler_flow(system, start, pi);
+  const Vector<T, 2> apocentre = -(1 + e) / (1 - e) * start.q;
+  EXPECT_LE(T((half.q - apocentre).cwiseAbs().maxCoeff()), 100 * this->working_tolerance());
+}
+
+// Negative controls: the agreement check fails for a Kepler flow whose μ is off by 1000
+// tolerances, and an orbit that is not bound is a domain error, not a wrong answer.
+TYPED_TEST(ClosedFormsTest, KeplerRejectsAPerturbedMuAndUnboundOrbits) {
+  using T = TypeParam;
+  const T tolerance = testing::reference_tolerance<T>();
+  Kepler<T> system, perturbed;
+  perturbed.mu = 1 + 1000 * tolerance;
+  const State<T, 2> start = kepler_pericentre<T>(T(1) / 2, T(0));
+  const T t = 5;
+  const State<T, 2> integrated = extrapolation_flow(system, start, t, tolerance).state;
+  EXPECT_TRUE(within_tolerance(integrated, kepler_flow(system, start, t), T(100 * tolerance)));
+  EXPECT_FALSE(within_tolerance(integrated, kepler_flow(perturbed, start, t), T(100 * tolerance)));
+  State<T, 2> escaping = start;
+  escaping.w[1] = 2;  // |w|² / 2 − 1/|q| = 2 − 2 = 0: parabolic
+  EXPECT_THROW(kepler_flow(system, escaping, t), std::domain_error);
+  State<T, 2> radial = start;
+  radial.w << T(1) / 2, 0;  // zero angular momentum: through q = 0
+  EXPECT_THROW(kepler_flow(system, radial, t), std::domain_error);
+}
+
 }  // namespace
 }  // namespace vivv

@@ -205,7 +205,9 @@ TEST(TaylorFlowTest, RunAtSixtyFourMoreBitsAgreesToTheTolerance) {
   expect_tighter_run_agrees<ChargedParticle<mpfr_real>>({"0.3", "-0.2"}, {"0.1", "0.4"});
 }
 
-// max over t of |E(F_t(v)) − E(v)| on a dense grid of [−10, 10].
+// max over t of |E(F_t(v)) − E(v)| on a dense grid of [−10, 10], relative to the largest
+// |p·w| met (the size of the terms that cancel in E: Kepler's orbit from this state has
+// eccentricity 0.99 and reaches speeds near 30 at pericentre).
 template <class System>
 typename System::Scalar energy_drift(const System& system,
                                      TaylorFlow<System>& flow) {
@@ -215,13 +217,18 @@ typename System::Scalar energy_drift(const System& system,
   using std::max;
   State<T, n> start;
   for (int i = 0; i < n; ++i) start.q[i] = T(3 + i) / 10, start.w[i] = T(4 - i) / 10;
+  // Hénon–Heiles from that state has energy 0.27 > 1/6 and escapes to infinity in finite
+  // time: start it inside its bounded region instead.
+  if constexpr (std::is_same_v<System, HenonHeiles<T>>) start.q /= 3, start.w /= 3;
   std::vector<T> times;
   for (int j = -40; j <= 40; ++j) times.push_back(T(j) / 4);
   const T e0 = energy(system, start.q, start.w);
-  T drift = 0;
-  for (const auto& v : flow.advance_many(start, times))
+  T drift = 0, scale = 1;
+  for (const auto& v : flow.advance_many(start, times)) {
     drift = max(drift, T(abs(energy(system, v.q, v.w) - e0)));
-  return drift;
+    scale = max(scale, T(abs(T(momentum(system, v.q, v.w).dot(v.w)))));
+  }
+  return drift / scale;
 }
 
 TEST(TaylorFlowTest, EnergyIsConservedForEveryCatalogueSystem) {
