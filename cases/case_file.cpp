@@ -287,15 +287,27 @@ DiscretizationSpec read_discretization(Reader reader, int dimension,
       reader.fail("lagrangian", "\"exact\" is the action along the exact psi: needs psi \"exact\", not \"" +
                                     tq.psi + "\"");
     if (tq.lagrangian == "quadrature") tq.nodes = reader.integer("nodes", 1, 64);
-    if (tq.lagrangian == "pullback")
+    if (tq.lagrangian == "pullback") {
       tq.qxq = std::make_shared<DiscretizationSpec>(
           read_discretization(reader.object("qxq"), dimension, parameters, false));
+      if (tq.qxq->kind == "galerkin")
+        reader.fail("qxq", "a Galerkin L_d is extremized by Newton in the working precision and cannot be pulled "
+                           "back through psi's derivatives; use it on Q × Q");
+    }
     spec.tq = tq;
   } else {
     spec.kind = reader.one_of("kind", rule_names());
     QxQRule rule = *rule_from_name(spec.kind);
     if (rule == QxQRule::alpha) spec.parameter = reader.decimal("alpha");
     if (rule == QxQRule::weighted) spec.parameter = reader.decimal("beta");
+    if (rule == QxQRule::galerkin) {
+      spec.galerkin_degree = reader.integer("degree", 1, 8);
+      spec.galerkin_quadrature = reader.one_of("quadrature", {"gauss", "lobatto"});
+      // Fewer nodes than the degree leave the interior values too loosely tied to L (degree 3 with 2
+      // Gauss nodes measures order 2, not min(2s, 2m) = 4): vivv has no prediction there.
+      spec.galerkin_nodes =
+          reader.integer("nodes", std::max(spec.galerkin_degree, spec.galerkin_quadrature == "lobatto" ? 2 : 1), 16);
+    }
     if (rule == QxQRule::expression) {
       spec.expression_tree = read_formula(reader, "L_d", spec.expression);
       try {

@@ -60,6 +60,9 @@ struct DiscretizationSpec {
   std::string expression;
   std::shared_ptr<const FormulaNode> expression_tree;
   int declared_order = 0;
+  // kind "galerkin": degree s of the curve, "gauss" or "lobatto", and the number of nodes.
+  int galerkin_degree = 0, galerkin_nodes = 0;
+  std::string galerkin_quadrature;
   std::optional<TwinSpec> twin;
   std::optional<TQSpec> tq;              // formalism "tq"
 };

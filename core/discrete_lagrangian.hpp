@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "core/discrete_legendre.hpp"
+#include "core/galerkin.hpp"
 #include "core/jet.hpp"
 #include "core/lagrangian.hpp"
 #include "core/tape.hpp"
@@ -28,12 +30,13 @@ enum class QxQRule {
   alpha,            // h·L((1 − α) q_b + α q_e, Δ/h)
   weighted,         // h·[(1 − β) L(q_b, Δ/h) + β L(q_e, Δ/h)]  (β = 1/2 is the trapezoid)
   expression,       // a formula in qb, qe, h and L(x, v), with the order its author claims
+  galerkin,         // extremal of the quadrature action over degree-s curves (core/galerkin.hpp)
 };
 
 // Rule names as written in case files and reports, in the order of QxQRule.
 inline const std::vector<std::string>& rule_names() {
   static const std::vector<std::string> names = {"left-rectangle", "right-rectangle", "midpoint", "trapezoid",
-                                                 "alpha",          "weighted",        "expression"};
+                                                 "alpha",          "weighted",        "expression",     "galerkin"};
   return names;
 }
 inline std::string rule_name(QxQRule rule) { return rule_names()[static_cast<int>(rule)]; }
@@ -71,6 +74,8 @@ struct QxQDiscretization {
   std::shared_ptr<const Tape<T>> expression;
   std::string formula;
   int declared_order = 0;
+  // `galerkin`: the curve degree, quadrature and its nodes and basis values, computed in T.
+  std::shared_ptr<const GalerkinRule<T>> galerkin;
 
   // Order of the rule alone: 2 for the symmetric rules, 1 otherwise (MW Def. 2.3.1); for a
   // formula, the order its author claims (the prediction every order claim then checks).
@@ -78,6 +83,8 @@ struct QxQDiscretization {
     switch (rule) {
       case QxQRule::expression:
         return declared_order;
+      case QxQRule::galerkin:
+        return galerkin->spec.predicted_order();
       case QxQRule::midpoint:
       case QxQRule::trapezoid:
         return 2;
@@ -103,6 +110,9 @@ template <class T>
 bool same_rule(const QxQDiscretization<T>& a, const QxQDiscretization<T>& b) {
   if (a.rule != b.rule) return false;
   if (a.rule == QxQRule::expression) return a.formula == b.formula;
+  if (a.rule == QxQRule::galerkin)
+    return a.galerkin->spec.degree == b.galerkin->spec.degree && a.galerkin->spec.lobatto == b.galerkin->spec.lobatto &&
+           a.galerkin->spec.nodes == b.galerkin->spec.nodes;
   return a.rule != QxQRule::alpha && a.rule != QxQRule::weighted ? true : a.parameter == b.parameter;
 }
 
@@ -115,6 +125,7 @@ QxQDiscretization<T> without_twin(const QxQDiscretization<T>& d) {
   plain.expression = d.expression;
   plain.formula = d.formula;
   plain.declared_order = d.declared_order;
+  plain.galerkin = d.galerkin;
   return plain;
 }
 
@@ -160,6 +171,15 @@ S discrete_lagrangian(const System& system,
       value = discretization.expression->evaluate_first(x.data());
       break;
     }
+    case QxQRule::galerkin:
+      // Extremized by Newton in T: its derivatives come from discrete_legendre, not from jets.
+      if constexpr (std::is_same_v<S, T>) {
+        value = galerkin_legendre(system, *discretization.galerkin, as_vector<T, n>(q_b), as_vector<T, n>(q_e), h).value;
+      } else {
+        throw std::logic_error("a Galerkin L_d is evaluated in the working precision only (discrete_legendre gives "
+                               "its derivatives)");
+      }
+      break;
   }
   if (discretization.twin) {
     using std::pow;
@@ -169,16 +189,6 @@ S discrete_lagrangian(const System& system,
   return value;
 }
 
-// L_d and its derivatives at (q_b, q_e): p_begin = −∂L_d/∂q_b, p_end = +∂L_d/∂q_e,
-// and the second-derivative blocks ∂p_begin/∂q_e = −∂²L_d/∂q_b∂q_e,
-// ∂p_end/∂q_b = ∂²L_d/∂q_e∂q_b, ∂p_end/∂q_e = ∂²L_d/∂q_e².
-template <class T, int n>
-struct DiscreteLegendre {
-  T value;
-  Vector<T, n> p_begin, p_end;
-  Matrix<T, n, n> dp_begin_dq_b, dp_begin_dq_e, dp_end_dq_b, dp_end_dq_e;
-};
-
 template <LagrangianSystem System>
 auto discrete_legendre(const System& system,
                        const QxQDiscretization<typename System::Scalar>& discretization,
@@ -187,6 +197,21 @@ auto discrete_legendre(const System& system,
                        const typename System::Scalar& h) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
+  if (discretization.rule == QxQRule::galerkin) {
+    // The envelope theorem and the Schur complement (core/galerkin.hpp); a twin term
+    // a·h^s·(q_e − q_b) adds a·h^s to both momenta and nothing to their derivatives.
+    DiscreteLegendre<T, n> d = galerkin_legendre(system, *discretization.galerkin, q_b, q_e, h);
+    if (discretization.twin) {
+      using std::pow;
+      const T scale = pow(h, discretization.twin->power);
+      for (int i = 0; i < n; ++i) {
+        d.value += scale * discretization.twin->a[i] * (q_e[i] - q_b[i]);
+        d.p_begin[i] += scale * discretization.twin->a[i];
+        d.p_end[i] += scale * discretization.twin->a[i];
+      }
+    }
+    return d;
+  }
   using J = Jet<T, 2 * n>;
   Point<J, n> jet_b, jet_e;
   for (int i = 0; i < n; ++i) {

@@ -16,7 +16,7 @@
 #include "core/formula_discretization.hpp"
 #include "core/state.hpp"
 #include "core/tq_evolution.hpp"
-#include "references/gauss_legendre.hpp"
+#include "core/quadrature.hpp"
 #include "harness/claim_result.hpp"
 #include "harness/order_fit.hpp"
 #include "references/reference_flow.hpp"
@@ -43,6 +43,9 @@ QxQDiscretization<T> make_discretization(const DiscretizationSpec& spec) {
   if (spec.formalism != "qxq") return d;
   d.rule = *rule_from_name(spec.kind);
   if (spec.parameter) d.parameter = from_decimal<T>(*spec.parameter);
+  if (d.rule == QxQRule::galerkin)
+    d.galerkin = std::make_shared<const GalerkinRule<T>>(
+        GalerkinSpec{spec.galerkin_degree, spec.galerkin_quadrature == "lobatto", spec.galerkin_nodes});
   return d;
 }
 

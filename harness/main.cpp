@@ -282,12 +282,16 @@ int command_list() {
     std::cout << "\n";
   }
   std::cout << "  or your own: {\"name\", \"lagrangian\": a formula, \"coordinates\", \"velocities\", \"params\"}"
-               " (n = 1..4)\n";
+               " (n = 1..4; optional \"symmetry\": the generator xi(q), a formula per coordinate)\n";
   std::cout << "discretizations (Q×Q rules):\n";
-  for (const auto& rule : rule_names())
-    std::cout << "  " << rule
-              << (rule == "expression" ? " (with \"L_d\": a formula in qb, qe, h, L(x, v), and your \"order\")" : "")
-              << "\n";
+  for (const auto& rule : rule_names()) {
+    std::cout << "  " << rule;
+    if (rule == "expression") std::cout << " (with \"L_d\": a formula in qb, qe, h, L(x, v), and your \"order\")";
+    if (rule == "galerkin")
+      std::cout << " (with \"degree\": 1..8, \"quadrature\": gauss | lobatto, \"nodes\": degree..16; "
+                   "order min(2 degree, 2 nodes), Lobatto min(2 degree, 2 nodes - 2))";
+    std::cout << "\n";
+  }
   std::cout << "discretizations of TQ (\"formalism\": \"tq\", \"theta\": a fraction in [0, 1]):\n"
                "  psi: linear | taylor (with \"r\": 1..8) | exact\n"
                "  lagrangian: quadrature (with \"nodes\") | pullback (with a Q×Q \"qxq\") | exact (psi exact only)\n";

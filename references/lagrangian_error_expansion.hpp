@@ -68,6 +68,8 @@ std::vector<typename System::Scalar> lagrangian_error_expansion(
       break;
     case QxQRule::expression:  // a user's formula has no second, independent statement to expand
       throw std::invalid_argument("lagrangian_error_expansion: no independent expansion of a formula L_d");
+    case QxQRule::galerkin:  // extremized by Newton: no closed expression to expand
+      throw std::invalid_argument("lagrangian_error_expansion: no independent expansion of a Galerkin L_d");
   }
   P discrete = per_step.shifted(1);
   if (d.twin)  // + a·h^s·(q(h) − q(0))

@@ -92,6 +92,9 @@ struct LagrangianOrderClaim : Claim<LagrangianOrderClaim> {
     if (context.scheme.future.rule == QxQRule::expression)
       claim.evidence["leading_coefficient_rule"] =
           "not compared: a formula L_d has no second statement here to expand independently";
+    else if (context.scheme.future.rule == QxQRule::galerkin)
+      claim.evidence["leading_coefficient_rule"] =
+          "not compared: a Galerkin L_d is extremized by Newton, with no closed expression to expand";
     else if constexpr (TapeRecordable<System>)
       add_signed_coefficient(claim, context, signed_error);
     conclude(claim);

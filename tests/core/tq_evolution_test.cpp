@@ -4,7 +4,7 @@
 #include "core/del_evolution.hpp"
 #include "core/euler_lagrange_tape.hpp"
 #include "references/closed_forms.hpp"
-#include "references/gauss_legendre.hpp"
+#include "core/quadrature.hpp"
 #include "tests/test_scalars.hpp"
 
 namespace vivv {

@@ -202,6 +202,9 @@ TYPED_TEST(ClaimsTest, QxQTQEquivalenceHoldsForPullbacksAndRejectsAnotherLagrang
 // Lemma 6.1 for every Q×Q rule: its pullback's TQ evolution is its DEL, conjugated by Psi.
 TYPED_TEST(ClaimsTest, QxQTQEquivalenceHoldsForThePullbackOfEveryRule) {
   for (const auto& name : rule_names()) {
+    // A Galerkin L_d is extremized in T and cannot be pulled back: bad input
+    // (tests/bad_cases/galerkin-pullback.json).
+    if (name == "galerkin") continue;
     nlohmann::json qxq = {{"kind", name}};
     if (name == "alpha") qxq["alpha"] = "0.3";
     if (name == "weighted") qxq["beta"] = "0.6";

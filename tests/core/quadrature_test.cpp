@@ -1,4 +1,4 @@
-#include "references/gauss_legendre.hpp"
+#include "core/quadrature.hpp"
 
 #include <string>
 #include <vector>
@@ -118,6 +118,37 @@ TYPED_TEST(GaussLegendreTest, IntegratesEigenVectorIntegrands) {
       integrate(rule, a, b, [](const T& t) { return Vector<T, 3>(T(1), t, T(t * t)); });
   Vector<T, 3> exact(b - a, (b * b - a * a) / 2, (b * b * b - a * a * a) / 3);
   EXPECT_LE((max_norm<T, 3>(result - exact)), 10 * this->working_tolerance());
+}
+
+// Gauss–Lobatto: both end points, weights positive summing to one, exact for degree ≤ 2m − 3
+// and not for degree 2m − 2 (the defect far above rounding).
+TYPED_TEST(GaussLegendreTest, LobattoHasTheEndPointsAndIsExactForDegree2mMinus3) {
+  using T = TypeParam;
+  using std::abs;
+  using std::pow;
+  for (int m = 2; m <= 8; ++m) {
+    SCOPED_TRACE("m = " + std::to_string(m));
+    const GaussLegendreRule<T> rule = gauss_lobatto<T>(m);
+    EXPECT_EQ(rule.nodes.front(), T(0));
+    EXPECT_EQ(rule.nodes.back(), T(1));
+    T sum = 0;
+    for (int i = 0; i < m; ++i) {
+      EXPECT_GT(rule.weights[i], T(0));
+      if (i > 0) EXPECT_GT(rule.nodes[i], rule.nodes[i - 1]);
+      EXPECT_LE(abs(T(rule.nodes[i] + rule.nodes[m - 1 - i] - 1)), this->working_tolerance());
+      sum += rule.weights[i];
+    }
+    EXPECT_LE(abs(T(sum - 1)), this->working_tolerance());
+    for (int degree = 0; degree <= 2 * m - 2; ++degree) {
+      const T quadrature = integrate(rule, T(0), T(1), [&](const T& x) { return T(pow(x, degree)); });
+      const T error = abs(T(quadrature - T(1) / (degree + 1)));
+      if (degree <= 2 * m - 3)
+        EXPECT_LE(error, this->working_tolerance()) << "degree " << degree;
+      else
+        EXPECT_GT(error, 1000 * this->working_tolerance()) << "degree " << degree;
+    }
+  }
+  EXPECT_THROW(gauss_lobatto<T>(1), std::invalid_argument);
 }
 
 TEST(GaussLegendre, RejectsFewerThanOneNode) {

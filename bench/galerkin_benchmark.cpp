@@ -1,0 +1,99 @@
+// Google Benchmark: one DEL step of the degree-4 Gauss Galerkin discrete
+// Lagrangian (4 nodes) on the pendulum and the paper's example, in MPFR at 256
+// bits, against the cost of the Lagrangian evaluations it needs (issue 13).
+// A Galerkin DEL step nests Newton on the 3 interior control values inside
+// Newton on q_{k+1}; every action evaluation evaluates L with its first and
+// second derivatives at the 4 nodes. The step is counted (how many such
+// evaluations it makes) and timed, one evaluation is timed alone, and the
+// ratio step / (count × evaluation) printed: what the nested solves and the
+// Schur complement cost beyond L itself, measured in this one run.
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <map>
+#include <string>
+
+#include "cases/systems.hpp"
+#include "core/del_evolution.hpp"
+#include "core/galerkin.hpp"
+
+namespace {
+
+using vivv::mpfr_real;
+constexpr int digits = 77;  // 256 bits
+
+// The system with a counter of its Lagrangian's evaluations.
+template <class System>
+struct Counted : System {
+  static inline long evaluations = 0;
+  template <class S>
+  S lagrangian(const vivv::Point<S, System::dimension>& q, const vivv::Point<S, System::dimension>& w) const {
+    ++evaluations;
+    return System::lagrangian(q, w);
+  }
+};
+
+vivv::QxQDiscretization<mpfr_real> degree_four_gauss() {
+  vivv::QxQDiscretization<mpfr_real> d;
+  d.rule = vivv::QxQRule::galerkin;
+  d.galerkin = std::make_shared<const vivv::GalerkinRule<mpfr_real>>(vivv::GalerkinSpec{4, false, 4});
+  return d;
+}
+
+// One DEL step from (q0, q1) = (1, 1.01), h = 1/10; counters: L evaluations per step.
+template <class System>
+void del_step(benchmark::State& state, const System& system) {
+  const auto scheme = vivv::matched_scheme(degree_four_gauss());
+  vivv::Vector<mpfr_real, 1> q0, q1;
+  q0[0] = 1, q1[0] = mpfr_real(101) / 100;
+  const mpfr_real h = mpfr_real(1) / 10;
+  System::evaluations = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(vivv::del_step(system, scheme, q0, q1, h));
+  state.counters["evaluations"] = double(System::evaluations) / double(state.iterations());
+}
+
+// One evaluation of L with its gradient and Hessian (what each quadrature node costs).
+template <class System>
+void lagrangian_hessian(benchmark::State& state, const System& system) {
+  vivv::Vector<mpfr_real, 1> x, v;
+  x[0] = 1, v[0] = mpfr_real(1) / 10;
+  for (auto _ : state) benchmark::DoNotOptimize(vivv::lagrangian_hessian(system, x, v));
+}
+
+class RatioReporter : public benchmark::ConsoleReporter {
+ public:
+  void ReportRuns(const std::vector<Run>& runs) override {
+    for (const auto& run : runs) {
+      seconds[run.benchmark_name()] = run.GetAdjustedRealTime();
+      auto count = run.counters.find("evaluations");
+      if (count != run.counters.end()) evaluations[run.benchmark_name()] = count->second.value;
+    }
+    ConsoleReporter::ReportRuns(runs);
+  }
+  std::map<std::string, double> seconds, evaluations;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  vivv::PrecisionGuard guard(digits);
+  const Counted<vivv::Pendulum<mpfr_real>> pendulum;
+  const Counted<vivv::PaperExample<mpfr_real>> paper;
+  benchmark::RegisterBenchmark("galerkin_del_step/pendulum", [&](auto& s) { del_step(s, pendulum); });
+  benchmark::RegisterBenchmark("lagrangian_hessian/pendulum", [&](auto& s) { lagrangian_hessian(s, pendulum); });
+  benchmark::RegisterBenchmark("galerkin_del_step/paper_example", [&](auto& s) { del_step(s, paper); });
+  benchmark::RegisterBenchmark("lagrangian_hessian/paper_example", [&](auto& s) { lagrangian_hessian(s, paper); });
+  benchmark::Initialize(&argc, argv);
+  RatioReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  std::printf("\nGalerkin degree 4, 4 Gauss nodes, MPFR %d bits: DEL step / (L evaluations x one evaluation)\n",
+              vivv::precision_bits<mpfr_real>());
+  for (const char* system : {"pendulum", "paper_example"}) {
+    const std::string step = std::string("galerkin_del_step/") + system, one = std::string("lagrangian_hessian/") + system;
+    if (!reporter.seconds.count(step) || !reporter.seconds.count(one)) continue;
+    const double count = reporter.evaluations[step];
+    std::printf("  %-14s %.0f evaluations per step, ratio %.2f\n", system, count,
+                reporter.seconds[step] / (count * reporter.seconds[one]));
+  }
+  return 0;
+}
