@@ -35,18 +35,12 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
     } else {
       if (!has_symmetry(context.system)) throw std::invalid_argument("discrete-noether: the system declares no symmetry");
       PerStepCheck<T> check;
-      SweepRun<System> run = run_sweep(context, context.scheme, true);
-      const std::vector<T> steps = context.steps();
-      for (std::size_t i = 0; i < steps.size(); ++i) {
-        const T& h = steps[i];
-        const auto& q = run.trajectories[i].q;
+      visit_trajectories(context, "discrete-noether: momentum map", [&](const T& h, const auto& q) {
         const int N = static_cast<int>(q.size()) - 1;
-        context.report("discrete-noether: momentum map over " + std::to_string(N) + " steps at h = " +
-                       to_decimal<T>(h));
         T first = 0, drift = 0, size = 1;
         int worst_step = 0;
         for (int k = 0; k < N; ++k) {
-          const Vector<T, n> p = discrete_legendre(context.system, context.scheme.future, q[k], q[k + 1], h).p_begin;
+          const Vector<T, n> p = momentum_at_step(context, q, k, h);
           const Vector<T, n> xi = symmetry_generator(context.system, q[k]);
           const T J = p.dot(xi);
           if (k == 0) first = J;
@@ -56,7 +50,7 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
         const T tolerance = T(N) * ulps * epsilon<T>() * size;
         check.add(h, drift, tolerance,
                   {{"N", N}, {"J_0", to_decimal<T>(first)}, {"worst_step", worst_step}});
-      }
+      });
       claim.evidence["momentum_map"] = "J_k = p_begin[L_d](q_k, q_k+1) · xi(q_k), k = 0 … N−1";
       claim.evidence["tolerance_rule"] = "N × " + std::to_string(ulps) + " ulps × max(1, |p_k|·|xi(q_k)|)";
       check.conclude_claim(claim, context, "max_k |J_k − J_0|",

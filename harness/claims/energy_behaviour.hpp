@@ -38,17 +38,12 @@ struct EnergyBehaviourClaim : Claim<EnergyBehaviourClaim> {
     ClaimResult claim = result();
     PerStepCheck<T> check;
     std::vector<T> largest_error;
-    SweepRun<System> run = run_sweep(context, context.scheme, true);
-    const std::vector<T> steps = context.steps();
-    for (std::size_t i = 0; i < steps.size(); ++i) {
-      const T& h = steps[i];
-      const auto& q = run.trajectories[i].q;
+    visit_trajectories(context, "energy-behaviour: energy", [&](const T& h, const auto& q) {
       const int N = static_cast<int>(q.size()) - 1;
-      context.report("energy-behaviour: energy at " + std::to_string(N) + " steps, h = " + to_decimal<T>(h));
       std::vector<T> running_max(N);
       T first = 0, size = 0, largest = 0;
       for (int k = 0; k < N; ++k) {
-        const Vector<T, n> p = discrete_legendre(context.system, context.scheme.future, q[k], q[k + 1], h).p_begin;
+        const Vector<T, n> p = momentum_at_step(context, q, k, h);
         const Vector<T, n> w = velocity_for_momentum(context.system, q[k], p, Vector<T, n>((q[k + 1] - q[k]) / h));
         const T E = energy(context.system, q[k], w);
         if (k == 0) first = E;
@@ -81,7 +76,7 @@ struct EnergyBehaviourClaim : Claim<EnergyBehaviourClaim> {
                  {"relative_growth", level > 0 ? to_decimal<T>(T(growth / level)) : std::string("0")},
                  {"rounding_floor", to_decimal<T>(rounding)},
                  {"at_floor", at_floor}});
-    }
+    });
     claim.series.push_back(sweep_series(context, "max_k |E_k − E_0| (bounded energy error, fitted, not judged)",
                                         largest_error, std::nullopt));
     claim.evidence["energy"] = "E_k = E(q_k, w_k), w_k from p_k = p_begin[L_d](q_k, q_k+1) by the inverse Legendre "

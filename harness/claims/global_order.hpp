@@ -43,6 +43,29 @@ SweepRun<System> run_sweep(const CaseContext<System>& context, const DelScheme<t
   return run;
 }
 
+// The structure claims' walk: the case's DEL sweep run once, then
+// `visit(h, q)` for each h with its trajectory q_0 … q_N, reporting
+// "<what> over N steps at h = …" as it goes.
+template <LagrangianSystem System, class Visit>
+void visit_trajectories(const CaseContext<System>& context, const std::string& what, Visit&& visit) {
+  using T = typename System::Scalar;
+  SweepRun<System> run = run_sweep(context, context.scheme, true);
+  const std::vector<T> steps = context.steps();
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const auto& q = run.trajectories[i].q;
+    context.report(what + " over " + std::to_string(q.size() - 1) + " steps at h = " + to_decimal<T>(steps[i]));
+    visit(steps[i], q);
+  }
+}
+
+// p_k = p_begin[L_d](q_k, q_{k+1}) = −D1 L_d(q_k, q_{k+1}), the momentum a trajectory carries at step k.
+template <LagrangianSystem System>
+Vector<typename System::Scalar, System::dimension> momentum_at_step(
+    const CaseContext<System>& context, const std::vector<Vector<typename System::Scalar, System::dimension>>& q,
+    int k, const typename System::Scalar& h) {
+  return discrete_legendre(context.system, context.scheme.future, q[k], q[k + 1], h).p_begin;
+}
+
 struct GlobalOrderClaim : Claim<GlobalOrderClaim> {
   static constexpr const char* id = "global-order";
   static constexpr const char* source = "Marsden–West Thm 2.3.1 (1); paper Thm 5.5 corollary";

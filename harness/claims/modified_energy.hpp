@@ -37,17 +37,12 @@ struct ModifiedEnergyClaim : Claim<ModifiedEnergyClaim> {
                       "or its L couples w and q at the initial state");
     ClaimResult claim = result();
     const ModifiedEnergyForm form = modified_energy_form(context.scheme.future.rule);
-    SweepRun<System> run = run_sweep(context, context.scheme, true);
-    const std::vector<T> steps = context.steps();
     std::vector<T> modified_error, energy_error;
-    for (std::size_t i = 0; i < steps.size(); ++i) {
-      const T& h = steps[i];
-      const auto& q = run.trajectories[i].q;
+    visit_trajectories(context, "modified-energy: H and H̃", [&](const T& h, const auto& q) {
       const int N = static_cast<int>(q.size()) - 1;
-      context.report("modified-energy: H and H̃ over " + std::to_string(N) + " steps at h = " + to_decimal<T>(h));
       T H0 = 0, modified0 = 0, largest_H = 0, largest_modified = 0;
       for (int k = 0; k < N; ++k) {
-        const Vector<T, n> p = discrete_legendre(context.system, context.scheme.future, q[k], q[k + 1], h).p_begin;
+        const Vector<T, n> p = momentum_at_step(context, q, k, h);
         const ModifiedEnergy<T> E = modified_energy(context.system, form, q[k], p, h);
         if (k == 0) H0 = E.H, modified0 = E.modified;
         largest_H = max(largest_H, T(abs(T(E.H - H0))));
@@ -55,7 +50,7 @@ struct ModifiedEnergyClaim : Claim<ModifiedEnergyClaim> {
       }
       energy_error.push_back(largest_H);
       modified_error.push_back(largest_modified);
-    }
+    });
     claim.evidence["rule"] = rule_name(context.scheme.future.rule);
     claim.evidence["H2_in_24ths"] = {{"pT_U''_p", form.pUp}, {"|U'|^2", form.UU}};
     claim.evidence["momenta"] = "p_k = p_begin[L_d](q_k, q_k+1), k = 0 … N−1";

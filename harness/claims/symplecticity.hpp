@@ -32,13 +32,8 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
     using std::max;
     ClaimResult claim = result();
     PerStepCheck<T> check;
-    SweepRun<System> run = run_sweep(context, context.scheme, true);
-    const std::vector<T> steps = context.steps();
-    for (std::size_t i = 0; i < steps.size(); ++i) {
-      const T& h = steps[i];
-      const auto& q = run.trajectories[i].q;
+    visit_trajectories(context, "symplecticity: Jacobians", [&](const T& h, const auto& q) {
       const int N = static_cast<int>(q.size()) - 1;
-      context.report("symplecticity: " + std::to_string(N) + " Jacobians at h = " + to_decimal<T>(h));
       Matrix<T, 2 * n, 2 * n> composition = Matrix<T, 2 * n, 2 * n>::Identity();
       T worst_ratio = -1, worst_defect = 0, worst_tolerance = 0, largest_defect = 0, step_tolerance = 0;
       for (int k = 0; k < N; ++k) {
@@ -64,7 +59,7 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
                  {"composite_defect", to_decimal<T>(composite_defect)},
                  {"composite_tolerance", to_decimal<T>(composite_tolerance)}},
                 composite_defect <= composite_tolerance);
-    }
+    });
     claim.evidence["jacobian"] =
         "implicit function theorem: dq'/d(q, p) = B_e^-1 (-B_b, I), dp'/d(q, p) = (E_b, 0) + E_e dq'/d(q, p) "
         "with B = d p_begin[L_d], E = d p_end[past L_d] at (q_k, q_k+1)";
