@@ -24,6 +24,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <vector>
