@@ -9,10 +9,11 @@ mode=${1:-}
 case "$mode" in run|test) ;; *) echo "usage: bash bootstrap.sh run|test" >&2; exit 2 ;; esac
 
 # Debian packages vivv builds and tests with (DESIGN §2; nothing else, nothing downloaded).
-packages=(g++ cmake make libeigen3-dev libboost-dev libmpfr-dev libgmp-dev nlohmann-json3-dev
+packages=(g++ cmake make ninja-build libeigen3-dev libboost-dev libmpfr-dev libgmp-dev nlohmann-json3-dev
           libgtest-dev libbenchmark-dev python3-jsonschema)
-# The "browser" tests render report.html in headless Chromium: only needed to test.
-if [ "$mode" = test ]; then packages+=(chromium); fi
+# Only needed to test: the "browser" tests render report.html in headless Chromium, the
+# "scale" tests start shards with GNU parallel.
+if [ "$mode" = test ]; then packages+=(chromium parallel); fi
 missing=()
 for package in "${packages[@]}"; do
   dpkg -s "$package" >/dev/null 2>&1 || missing+=("$package")
@@ -25,7 +26,10 @@ if ((${#missing[@]})); then
 fi
 
 jobs=$(nproc)
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+# Ninja keeps both cores busy to the end of the build (make idles while the last unit of a
+# target compiles); a build/ configured earlier keeps its generator.
+generator=(); [ -f build/CMakeCache.txt ] || generator=(-G Ninja)
+cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j "$jobs"
 
 if [ "$mode" = run ]; then

@@ -1,7 +1,7 @@
 // run_on_system: a case run on one system type, compiled once per system and
 // scalar (harness/run_system_impl.hpp holds the definition, CMake generates the
 // explicit instantiations of the catalogue systems and of formula systems of
-// dimension 1 to 4).
+// dimension 1 to 4, grouped by scalar and dimension into a few units).
 #pragma once
 
 #include <functional>

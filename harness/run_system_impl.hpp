@@ -1,7 +1,8 @@
 // Running a case on one system type: the sweep, the claims, --refine. This is
 // where every claim is instantiated for a system, so it is compiled once per
 // system and scalar, in translation units harness/CMakeLists.txt generates
-// (explicit instantiations of run_on_system); run_case.cpp only dispatches.
+// (explicit instantiations of run_on_system, the systems of one scalar and
+// dimension together); run_case.cpp only dispatches.
 #pragma once
 
 #include <cmath>

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
 #include <random>
 #include <string>
@@ -51,6 +52,21 @@ T reference_tolerance() {
   using std::pow;
   int digits = static_cast<int>((precision_bits<T>() - 1) * 0.30102999566398120);
   return pow(T(10), -(digits - 10));
+}
+
+// 10^−e in T.
+template <class T>
+T ten_to_minus(int e) {
+  using std::pow;
+  return pow(T(10), -e);
+}
+
+// m! in T.
+template <class T>
+T factorial(int m) {
+  T result = 1;
+  for (int i = 2; i <= m; ++i) result *= i;
+  return result;
 }
 
 }  // namespace vivv::testing

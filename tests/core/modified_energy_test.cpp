@@ -23,7 +23,7 @@ class ModifiedEnergyTest : public testing::ScalarTest<T> {};
 TYPED_TEST_SUITE(ModifiedEnergyTest, testing::Scalars, testing::ScalarNames);
 
 template <class T>
-QxQDiscretization<T> rule(QxQRule r) {
+QxQDiscretization<T> plain_rule(QxQRule r) {
   QxQDiscretization<T> d;
   d.rule = r;
   return d;
@@ -55,7 +55,7 @@ TYPED_TEST(ModifiedEnergyTest, TheOscillatorsExactFrequenciesFixTheCoefficients)
       // The map's rotation per step, from one DEL step: q_{k+1} + q_{k−1} = 2 cos θ q_k.
       const T theta = r == QxQRule::midpoint ? T(2 * atan(h / 2)) : T(2 * asin(h / 2));
       const Vector<T, 1> q0(T(1) / 3), q1(T(1) / 2);
-      const auto [q2, report] = del_step(oscillator, matched_scheme(rule<T>(r)), q0, q1, h);
+      const auto [q2, report] = del_step(oscillator, matched_scheme(plain_rule<T>(r)), q0, q1, h);
       EXPECT_LE(abs(T((q2[0] + q0[0]) / (2 * q1[0]) - cos(theta))), this->working_tolerance());
       // The exact quadratic invariant's ratio: 1 (midpoint keeps H), 1 − h²/4 (trapezoid).
       const T ratio = r == QxQRule::midpoint ? T(1) : T(1 - h * h / 4);
@@ -82,10 +82,10 @@ std::pair<T, T> pendulum_drifts(QxQRule r, const ModifiedEnergyForm& form, const
   Pendulum<T> pendulum;
   const int N = static_cast<int>(20 / static_cast<double>(h));
   const Vector<T, 1> q0(T(11) / 10), q1(T(11) / 10 + h / 4);
-  const auto trajectory = del_trajectory(pendulum, matched_scheme(rule<T>(r)), q0, q1, h, N);
+  const auto trajectory = del_trajectory(pendulum, matched_scheme(plain_rule<T>(r)), q0, q1, h, N);
   T H0 = 0, modified0 = 0, H_drift = 0, modified_drift = 0;
   for (int k = 0; k < N; ++k) {
-    const Vector<T, 1> p = discrete_legendre(pendulum, rule<T>(r), trajectory.q[k], trajectory.q[k + 1], h).p_begin;
+    const Vector<T, 1> p = discrete_legendre(pendulum, plain_rule<T>(r), trajectory.q[k], trajectory.q[k + 1], h).p_begin;
     const ModifiedEnergy<T> E = modified_energy(pendulum, form, trajectory.q[k], p, h);
     if (k == 0) H0 = E.H, modified0 = E.modified;
     H_drift = max(H_drift, T(abs(T(E.H - H0))));

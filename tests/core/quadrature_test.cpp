@@ -13,12 +13,7 @@ class GaussLegendreTest : public testing::ScalarTest<T> {};
 TYPED_TEST_SUITE(GaussLegendreTest, testing::Scalars, testing::ScalarNames);
 
 // m!
-template <class T>
-T factorial(int m) {
-  T result = 1;
-  for (int i = 2; i <= m; ++i) result *= i;
-  return result;
-}
+using testing::factorial;
 
 TYPED_TEST(GaussLegendreTest, NodesAreSymmetricInTheUnitIntervalAndWeightsArePositiveSummingToOne) {
   using T = TypeParam;

@@ -34,12 +34,7 @@ struct OperationProbe {
 };
 
 // k!
-template <class T>
-T factorial(int k) {
-  T value = 1;
-  for (int j = 2; j <= k; ++j) value *= j;
-  return value;
-}
+using testing::factorial;
 
 // binom(c, k) for real c.
 template <class T>

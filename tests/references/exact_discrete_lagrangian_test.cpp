@@ -9,15 +9,12 @@
 
 #include "cases/systems.hpp"
 #include "references/closed_forms.hpp"
+#include "tests/test_scalars.hpp"
 
 namespace vivv {
 namespace {
 
-template <class T>
-T ten_to_minus(int e) {
-  using std::pow;
-  return pow(T(10), -e);
-}
+using testing::ten_to_minus;
 
 template <class T>
 Vector<T, 1> one(const T& x) {

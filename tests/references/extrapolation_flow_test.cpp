@@ -18,7 +18,7 @@ TYPED_TEST_SUITE(ExtrapolationFlowTest, testing::Scalars, testing::ScalarNames);
 
 // Canonical angular momentum J = q1 p2 − q2 p1, p = dL/dw: conserved by rotation symmetry.
 template <class System>
-auto angular_momentum(const System& system, const State<typename System::Scalar, 2>& v) {
+auto canonical_angular_momentum(const System& system, const State<typename System::Scalar, 2>& v) {
   using T = typename System::Scalar;
   Vector<T, 2> p = momentum(system, v.q, v.w);
   return T(v.q[0] * p[1] - v.q[1] * p[0]);
@@ -90,7 +90,7 @@ TYPED_TEST(ExtrapolationFlowTest, ChargedParticleConservesEnergyAndAngularMoment
   State<T, 2> end = extrapolation_flow(system, start, T(8), tolerance).state;
   T energy_start = energy(system, start.q, start.w), energy_end = energy(system, end.q, end.w);
   EXPECT_LE(abs(T(energy_end - energy_start)), tolerance * (1 + abs(energy_start)));
-  T momentum_start = angular_momentum(system, start), momentum_end = angular_momentum(system, end);
+  T momentum_start = canonical_angular_momentum(system, start), momentum_end = canonical_angular_momentum(system, end);
   EXPECT_LE(abs(T(momentum_end - momentum_start)), tolerance * (1 + abs(momentum_start)));
   EXPECT_GT(state_distance(start, end), T(1) / 10);  // it did move
 }

@@ -18,11 +18,7 @@ namespace vivv {
 namespace {
 
 // 10^−e in T, without passing through a double.
-template <class T>
-T ten_to_minus(int e) {
-  using std::pow;
-  return pow(T(10), -e);
-}
+using testing::ten_to_minus;
 
 // |a − b| relative to 1 + |b|, maximized over q and w.
 template <class T, int n>

@@ -6,15 +6,12 @@
 #include <gtest/gtest.h>
 
 #include "cases/systems.hpp"
+#include "tests/test_scalars.hpp"
 
 namespace vivv {
 namespace {
 
-template <class T>
-T ten_to_minus(int e) {
-  using std::pow;
-  return pow(T(10), -e);
-}
+using testing::ten_to_minus;
 
 TEST(TaylorVariationalFlowTest, HarmonicOscillatorJacobianIsTheRotation) {
   PrecisionGuard guard(61);

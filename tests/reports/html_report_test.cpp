@@ -17,12 +17,7 @@
 namespace vivv {
 namespace {
 
-int count(const std::string& text, const std::string& needle) {
-  int n = 0;
-  for (std::size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1))
-    ++n;
-  return n;
-}
+using testing::count;
 
 TEST(HtmlReport, EveryClaimHasItsRowAndItsPlot) {
   const std::string page = render_html(testing::synthetic_report());

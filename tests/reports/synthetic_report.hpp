@@ -5,6 +5,9 @@
 // of h_max against |w|.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include <nlohmann/json.hpp>
 
 #include "reports/report.hpp"
@@ -124,6 +127,14 @@ inline nlohmann::json synthetic_report_with_map() {
   std::vector<nlohmann::json> cases(report["cases"].begin(), report["cases"].end());
   cases.push_back(synthetic_case("gamma", {synthetic_existence_claim()}));
   return assemble_report(cases, {"vivv run synthetic", "vivv test"});
+}
+
+// How often `needle` occurs in `text` (overlapping occurrences counted).
+inline int count(const std::string& text, const std::string& needle) {
+  int n = 0;
+  for (std::size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1))
+    ++n;
+  return n;
 }
 
 }  // namespace vivv::testing
