@@ -1,6 +1,6 @@
 // vivv: the command-line tool (docs/case-files.md).
 //
-//   vivv run [CASE.json ...] [--out DIR] [--digits D] [--scalar S] [--jobs J] [--refine] [--progress]
+//   vivv run [CASE.json ...] [--out DIR] [--digits D] [--scalar S] [--jobs J] [--shard I/N] [--refine] [--progress]
 //   vivv report REPORT.json [MORE.json ...] --out DIR   (merge and re-render)
 //   vivv list
 //
@@ -42,12 +42,18 @@ struct BadInput : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// --shard I/N: the cases at positions I − 1, I − 1 + N, I − 1 + 2N, ... of the suite.
+struct Shard {
+  int index = 1, count = 1;
+};
+
 struct RunOptions {
   std::vector<std::string> case_files;
   std::string out = "vivv-report";
   std::optional<int> digits;
   std::optional<std::string> scalar;
   int jobs = 1;
+  std::optional<Shard> shard;
   bool progress = isatty(STDERR_FILENO);
   bool refine = false;
 };
@@ -90,6 +96,22 @@ int parse_integer(const std::string& flag, const std::string& text, int low, int
                  std::to_string(high) + "], got '" + text + "'");
 }
 
+Shard parse_shard(const std::string& text) {
+  const auto slash = text.find('/');
+  if (slash != std::string::npos) {
+    const std::string index = text.substr(0, slash), count = text.substr(slash + 1);
+    auto digits = [](const std::string& t) {
+      return !t.empty() && t.size() <= 4 && std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
+    };
+    if (digits(index) && digits(count)) {
+      Shard shard{std::stoi(index), std::stoi(count)};
+      if (shard.count >= 1 && shard.count <= 1000 && shard.index >= 1 && shard.index <= shard.count) return shard;
+    }
+  }
+  throw BadInput("--shard: expected I/N with 1 <= I <= N <= 1000 (run the I-th of N shards), got '" +
+                 text.substr(0, 40) + "'");
+}
+
 RunOptions parse_run_options(const std::vector<std::string>& args) {
   RunOptions options;
   for (std::size_t i = 0; i < args.size(); ++i) {
@@ -106,6 +128,7 @@ RunOptions parse_run_options(const std::vector<std::string>& args) {
       if (std::find(names.begin(), names.end(), *options.scalar) == names.end())
         throw BadInput("--scalar: expected double, \"long double\", float128 or mpfr, got '" + *options.scalar + "'");
     } else if (arg == "--jobs") options.jobs = parse_integer(arg, value(), 1, 64);
+    else if (arg == "--shard") options.shard = parse_shard(value());
     else if (arg == "--progress") options.progress = true;
     else if (arg == "--quiet") options.progress = false;
     else if (arg == "--refine") options.refine = true;
@@ -230,14 +253,27 @@ int command_run(const std::vector<std::string>& args, const std::string& command
     if (!fresh)
       throw CaseError(file, "name", "'" + specs.back().name + "' is also the name of " + it->second);
   }
-  std::vector<nlohmann::json> cases = run_all(specs, options);
+  // Every case file is read and checked above, so that each shard refuses the same bad input;
+  // a shard then computes its own positions.
+  std::vector<std::size_t> positions;
+  for (std::size_t k = 0; k < specs.size(); ++k)
+    if (!options.shard || static_cast<int>(k % options.shard->count) == options.shard->index - 1)
+      positions.push_back(k);
+  std::vector<CaseSpec> selected;
+  for (std::size_t k : positions) selected.push_back(specs[k]);
+  std::vector<nlohmann::json> cases = run_all(selected, options);
   nlohmann::json case_paths = nlohmann::json::object();  // absolute paths: run block only
-  for (std::size_t i = 0; i < specs.size(); ++i) {
-    cases[i]["file"] = report_file_name(specs[i].file);
-    case_paths[specs[i].name] = fs::absolute(specs[i].file).lexically_normal().string();
+  for (std::size_t i = 0; i < selected.size(); ++i) {
+    cases[i]["file"] = report_file_name(selected[i].file);
+    case_paths[selected[i].name] = fs::absolute(selected[i].file).lexically_normal().string();
   }
   nlohmann::json report = assemble_report(cases, {command_line, library_versions()});
   report["run"]["case_paths"] = case_paths;
+  if (options.shard)
+    report["run"]["shard"] = {{"index", options.shard->index},
+                              {"count", options.shard->count},
+                              {"suite_size", specs.size()},
+                              {"positions", positions}};
   return write_reports(options.out, report);
 }
 
@@ -304,7 +340,8 @@ int command_list() {
 }
 
 int usage(std::ostream& out, int code) {
-  out << "usage: vivv run [CASE.json ...] [--out DIR] [--digits D] [--scalar S] [--jobs J] [--refine] [--progress|--quiet]\n"
+  out << "usage: vivv run [CASE.json ...] [--out DIR] [--digits D] [--scalar S] [--jobs J] [--shard I/N] [--refine]\n"
+         "                [--progress|--quiet]\n"
          "       vivv report REPORT.json [MORE.json ...] --out DIR\n"
          "       vivv list\n";
   return code;

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <iomanip>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -184,6 +185,59 @@ nlohmann::json assemble_report(std::vector<nlohmann::json> cases, const RunInfo&
           {"cases", cases}};
 }
 
+namespace {
+
+// The suite position of every case of `inputs`, in input order, when the inputs are the
+// shards of one `vivv run --shard I/N` split (each run block's "shard"); none when no input
+// is a shard. Mixed, repeated, overlapping or missing shards are a ReportError naming them.
+std::optional<std::vector<std::size_t>> shard_positions(
+    const std::vector<std::pair<std::string, nlohmann::json>>& inputs) {
+  const auto is_shard = [](const nlohmann::json& report) {
+    return report.contains("run") && report["run"].is_object() && report["run"].contains("shard");
+  };
+  const auto first = std::find_if(inputs.begin(), inputs.end(), [&](const auto& in) { return is_shard(in.second); });
+  if (first == inputs.end()) return std::nullopt;
+  const nlohmann::json& reference = first->second["run"]["shard"];
+  const auto count = reference.at("count").get<std::size_t>(), size = reference.at("suite_size").get<std::size_t>();
+  std::map<std::size_t, std::string> shards;     // index -> file
+  std::map<std::size_t, std::string> positions;  // position -> file
+  std::vector<std::size_t> order;
+  for (const auto& [file, report] : inputs) {
+    if (!is_shard(report))
+      throw ReportError(file + ": run.shard: not a shard, while " + first->first +
+                        " is one: merge the shards of one split, or unsharded reports");
+    const nlohmann::json& shard = report["run"]["shard"];
+    if (shard.at("count").get<std::size_t>() != count || shard.at("suite_size").get<std::size_t>() != size)
+      throw ReportError(file + ": run.shard: a shard of " + shard.at("count").dump() + " over " +
+                        shard.at("suite_size").dump() + " cases, while " + first->first + " is one of " +
+                        std::to_string(count) + " over " + std::to_string(size));
+    const auto index = shard.at("index").get<std::size_t>();
+    if (auto [it, fresh] = shards.emplace(index, file); !fresh)
+      throw ReportError(file + ": run.shard: shard " + std::to_string(index) + " of " + std::to_string(count) +
+                        " is also " + it->second);
+    const nlohmann::json& at = shard.at("positions");
+    if (!at.is_array() || at.size() != report.at("cases").size())
+      throw ReportError(file + ": run.shard.positions: expected one position per case");
+    for (const auto& position : at) {
+      const auto k = position.get<std::size_t>();
+      if (k >= size) throw ReportError(file + ": run.shard.positions: " + position.dump() + " is outside the suite");
+      if (auto [it, fresh] = positions.emplace(k, file); !fresh)
+        throw ReportError(file + ": run.shard.positions: position " + position.dump() + " is also in " + it->second);
+      order.push_back(k);
+    }
+  }
+  for (std::size_t index = 1; index <= count; ++index)
+    if (!shards.count(index))
+      throw ReportError("shard " + std::to_string(index) + " of " + std::to_string(count) +
+                        " is missing: the merged report would not be the suite");
+  if (positions.size() != size)
+    throw ReportError("the shards hold " + std::to_string(positions.size()) + " of the suite's " +
+                      std::to_string(size) + " cases");
+  return order;
+}
+
+}  // namespace
+
 nlohmann::json merge_reports(const std::vector<std::pair<std::string, nlohmann::json>>& inputs,
                              const RunInfo& run) {
   nlohmann::json run_json = run_block(run);
@@ -209,6 +263,12 @@ nlohmann::json merge_reports(const std::vector<std::pair<std::string, nlohmann::
     const nlohmann::json case_paths = source_run.value("case_paths", nlohmann::json::object());
     for (const auto& [name, path] : case_paths.items()) run_json["case_paths"][name] = path;
     run_json["merged_from"].push_back({{"report", file}, {"run", source_run}});
+  }
+  // The shards of one split merge into the suite's order: the unsharded run's report.
+  if (auto positions = shard_positions(inputs)) {
+    std::vector<nlohmann::json> by_position(positions->size());
+    for (std::size_t i = 0; i < positions->size(); ++i) by_position[(*positions)[i]] = cases[i];
+    cases = by_position;
   }
   return {{"schema", report_schema},
           {"run", run_json},
