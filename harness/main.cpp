@@ -3,6 +3,7 @@
 //   vivv run [CASE.json ...] [--out DIR] [--digits D] [--scalar S] [--jobs J] [--shard I/N] [--refine] [--progress]
 //   vivv report REPORT.json [MORE.json ...] --out DIR   (merge and re-render)
 //   vivv list
+//   vivv bench reference|del
 //
 // Exit codes: 0 every claim holds (or fails as the case expects: xfail), 1 a
 // claim fails, errs or passes although marked xfail, 2 bad input (the message
@@ -25,6 +26,7 @@
 #include "cases/case_file.hpp"
 #include "cases/catalogue.hpp"
 #include "core/discrete_lagrangian.hpp"
+#include "harness/bench_del.hpp"
 #include "harness/bench_reference.hpp"
 #include "harness/claims.hpp"
 #include "harness/run_case.hpp"
@@ -343,7 +345,8 @@ int usage(std::ostream& out, int code) {
   out << "usage: vivv run [CASE.json ...] [--out DIR] [--digits D] [--scalar S] [--jobs J] [--shard I/N] [--refine]\n"
          "                [--progress|--quiet]\n"
          "       vivv report REPORT.json [MORE.json ...] --out DIR\n"
-         "       vivv list\n";
+         "       vivv list\n"
+         "       vivv bench reference|del\n";
   return code;
 }
 
@@ -366,6 +369,12 @@ int main(int argc, char** argv) {
     if (command == "list") return command_list();
     if (command == "bench" && args.size() == 1 && args[0] == "reference")
       return run_reference_benchmark(std::cout);
+    if (command == "bench" && args.size() == 1 && args[0] == "del") return run_del_benchmark(std::cout);
+    if (command == "bench") {
+      std::cerr << "vivv bench: expected one of: reference (the Taylor reference flow against Boost.Odeint), "
+                   "del (a DEL step against the L evaluations it needs)\n";
+      return exit_bad_input;
+    }
     if (command == "report") return command_report(args, command_line);
     if (command == "--help" || command == "help") return usage(std::cout, exit_pass);
     std::cerr << "vivv: unknown command '" << command << "'\n";
