@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "bench/odeint_mpfr.hpp"  // extract_value_type for odeint on MPFR
@@ -32,14 +33,15 @@ struct TaylorRun {
   double error = 0;  // max-norm distance to the closed form at t = 10 (not timed)
 };
 
-// The pendulum q'' = −sin q from (1, 0) to t = 10 by the Taylor flow at step tolerance `tolerance`.
+// The pendulum q'' = −k sin q from (1, 0) to `end_time` by the Taylor flow at step tolerance
+// `tolerance`.
 template <class T>
-TaylorRun time_taylor(const T& tolerance, int repetitions) {
+TaylorRun time_taylor(const T& tolerance, int repetitions, const T& k = 1, const T& end_time = 10) {
   Pendulum<T> pendulum;
+  pendulum.k = k;
   State<T, 1> start;
   start.q[0] = 1;
   start.w[0] = 0;
-  const T end_time = 10;
   TaylorRun run;
   run.seconds = 1e300;
   State<T, 1> end;
@@ -53,6 +55,18 @@ TaylorRun time_taylor(const T& tolerance, int repetitions) {
   run.error =
       static_cast<double>(state_distance<T, 1>(end, pendulum_flow(pendulum, start, end_time)));
   return run;
+}
+
+// heyoka's published pendulum benchmarks, so that vivv's figures can be set beside theirs:
+// x'' = −9.8 sin x from x = 1, v = 0, at the working precision's tolerance.
+template <class T>
+void heyoka_problem(std::ostream& out, nlohmann::json& result, const std::string& key, const std::string& label,
+                    const T& tolerance, const T& end_time, int repetitions) {
+  TaylorRun run = time_taylor<T>(tolerance, repetitions, from_decimal<T>("9.8"), end_time);
+  out << "heyoka's pendulum, " << label << ": " << run.seconds * 1e6 << " us, " << run.report.steps
+      << " steps, order " << run.report.order << ", error vs closed form " << run.error << "\n";
+  result[key] = {{"seconds", run.seconds}, {"steps", run.report.steps}, {"order", run.report.order},
+                 {"error", run.error}, {"bits", precision_bits<T>()}};
 }
 
 struct OdeintRun {
@@ -134,6 +148,8 @@ int run_reference_benchmark(std::ostream& out) {
     result["odeint_error"] = odeint.error;
     result["odeint_ratio"] = odeint.seconds / taylor40.seconds;
     result["odeint_ratio_vs_tol70"] = odeint.seconds / taylor.seconds;
+    heyoka_problem<T>(out, result, "heyoka_pendulum_256", std::to_string(bits) + " bits, tol 1e-77, t = 0.1",
+                      pow(T(10), -77), T(1) / 10, 20);
   }
   {
     TaylorRun quad_run = time_taylor<quad>(pow(quad(10), -32), 20);
@@ -144,6 +160,8 @@ int run_reference_benchmark(std::ostream& out) {
     result["steps_quad"] = quad_run.report.steps;
     result["order_quad"] = quad_run.report.order;
     result["error_quad"] = quad_run.error;
+    heyoka_problem<quad>(out, result, "heyoka_pendulum_quad", "quad, tol 1e-34, t = 1", pow(quad(10), -34),
+                         quad(1), 20);
   }
   out << result.dump() << "\n";
   return 0;
