@@ -8,10 +8,13 @@
 // Exit codes: 0 every claim holds (or fails as the case expects: xfail), 1 a
 // claim fails, errs or passes although marked xfail, 2 bad input (the message
 // names the file, the field and what was expected; no report is written).
+#include <signal.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -32,6 +35,7 @@
 #include "harness/run_case.hpp"
 #include "harness/version.hpp"
 #include "reports/report.hpp"
+#include "reports/signals.hpp"
 
 namespace fs = std::filesystem;
 
@@ -173,6 +177,37 @@ nlohmann::json run_one(const CaseSpec& spec, const RunOptions& options) {
   }
 }
 
+volatile sig_atomic_t interrupted_by = 0;
+extern "C" void note_interrupt(int signal) { interrupted_by = signal; }
+
+// While alive (the --jobs parent), SIGINT, SIGTERM and SIGHUP are noted instead of ending the
+// process, so that it can stop its workers and remove its temporary directory first; a signal
+// ignored when vivv started stays ignored. restore() gives back the dispositions vivv started
+// with (to the workers, and before the parent ends by the signal it noted).
+class NoteInterrupts {
+ public:
+  NoteInterrupts() {
+    for (std::size_t i = 0; i < signals_.size(); ++i) {
+      sigaction(signals_[i], nullptr, &previous_[i]);
+      if (previous_[i].sa_handler == SIG_IGN) continue;
+      struct sigaction action {};
+      action.sa_handler = note_interrupt;
+      sigemptyset(&action.sa_mask);
+      sigaction(signals_[i], &action, nullptr);
+    }
+  }
+  ~NoteInterrupts() { restore(); }
+  NoteInterrupts(const NoteInterrupts&) = delete;
+  NoteInterrupts& operator=(const NoteInterrupts&) = delete;
+  void restore() {
+    for (std::size_t i = 0; i < signals_.size(); ++i) sigaction(signals_[i], &previous_[i], nullptr);
+  }
+
+ private:
+  std::array<int, 3> signals_{SIGINT, SIGTERM, SIGHUP};
+  std::array<struct sigaction, 3> previous_{};
+};
+
 // Runs the cases in up to `jobs` worker processes (MPFR's working precision
 // is process-wide in Boost 1.74, so parallel cases need processes, not threads).
 std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const RunOptions& options) {
@@ -187,12 +222,19 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
   if (!mkdtemp(work_template.data()))
     throw BadInput("cannot create a private temporary directory under " + fs::temp_directory_path().string());
   fs::path work = work_template;
+  NoteInterrupts notes;
   std::map<pid_t, std::size_t> running;
   std::string failures;
   std::size_t next = 0;
+  // Waits for a worker to end, looking every 50 ms whether the run was interrupted.
   auto reap = [&]() {
     int status = 0;
-    pid_t pid = wait(&status);
+    pid_t pid = 0;
+    while ((pid = waitpid(-1, &status, WNOHANG)) == 0 && !interrupted_by) {
+      const struct timespec pause = {0, 50'000'000};
+      nanosleep(&pause, nullptr);
+    }
+    if (pid <= 0) return;  // interrupted
     std::size_t index = running.at(pid);
     running.erase(pid);
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
@@ -202,11 +244,17 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
     std::ifstream in(work / (std::to_string(index) + ".json"));
     results[index] = nlohmann::json::parse(in);
   };
-  while (next < specs.size() || !running.empty()) {
+  while ((next < specs.size() || !running.empty()) && !interrupted_by) {
     if (next < specs.size() && static_cast<int>(running.size()) < options.jobs) {
       std::cout.flush();
       std::cerr.flush();
-      pid_t pid = fork();
+      pid_t pid = 0;
+      {
+        // The worker starts with vivv's own dispositions before any signal reaches it.
+        DeferInterrupts defer;
+        pid = fork();
+        if (pid == 0) notes.restore();
+      }
       if (pid == 0) {
         int code = 0;
         try {
@@ -223,6 +271,19 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
       reap();
     }
   }
+  if (interrupted_by) {
+    // Interrupted: stop the workers, remove what they wrote, and end by the same signal
+    // (no report is written; an earlier one stays as it was).
+    for (const auto& [pid, index] : running) kill(pid, SIGTERM);
+    for (const auto& [pid, index] : running) waitpid(pid, nullptr, 0);
+    std::error_code ignored;
+    fs::remove_all(work, ignored);
+    const int signal = interrupted_by;
+    notes.restore();
+    std::cerr << "vivv: interrupted (signal " << signal << "); no report written\n";
+    raise(signal);
+    std::_Exit(128 + signal);
+  }
   fs::remove_all(work);
   if (!failures.empty()) throw BadInput(failures + "(see the messages above)");
   return results;
@@ -238,6 +299,7 @@ void check_output_directory(const std::string& out) {
   fs::create_directories(out, error);
   if (error) throw BadInput("--out: cannot create '" + out + "': " + error.message());
   std::string probe = (fs::path(out) / ".vivv-write-test-XXXXXX").string();
+  DeferInterrupts defer;
   int fd = mkstemp(probe.data());
   if (fd < 0) throw BadInput("--out: cannot write in '" + out + "'");
   close(fd);

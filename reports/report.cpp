@@ -20,6 +20,7 @@
 #include "cases/case_file.hpp"
 #include "reports/html_report.hpp"
 #include "reports/junit_report.hpp"
+#include "reports/signals.hpp"
 
 namespace vivv {
 
@@ -379,7 +380,8 @@ std::vector<std::string> write_report_directory(const std::string& directory,
   if (error) throw ReportError("cannot create " + directory + ": " + error.message());
   std::vector<std::string> paths, temporaries;
   // Every temporary first, then the renames: a write error leaves no final file changed and no
-  // temporary behind.
+  // temporary behind; an interruption waits until the three files are in place.
+  DeferInterrupts defer;
   try {
     for (const auto& [name, content] : files) {
       paths.push_back((fs::path(directory) / name).string());
@@ -394,10 +396,12 @@ std::vector<std::string> write_report_directory(const std::string& directory,
 }
 
 void write_atomically(const std::string& path, const std::string& content) {
+  DeferInterrupts defer;
   std::filesystem::rename(write_temporary(path, content), path);
 }
 
 void write_exclusively(const std::string& path, const std::string& content) {
+  DeferInterrupts defer;
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
   if (fd < 0) throw ReportError("cannot create " + path + ": " + std::strerror(errno));
   const bool ok = write_all(fd, content);

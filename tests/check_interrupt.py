@@ -1,0 +1,91 @@
+#!/usr/bin/env python3
+"""Interrupting vivv run leaves the earlier report intact and nothing else behind.
+
+    check_interrupt.py VIVV OUT QUICK.json SLOW.json [SLOW2.json]
+
+For SIGINT and SIGTERM, serial and with --jobs 2: a quick run writes a report into a
+directory; a slow run into the same directory is interrupted after 1.5 s (while it computes).
+Then the process must have ended by that signal, report.json, report.html and junit.xml must
+be byte for byte the earlier ones, the directory must hold nothing else, its private $TMPDIR
+must be empty, and no worker may survive. Exit 0 when every combination holds, 1 otherwise.
+"""
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+
+def snapshot(directory):
+    return {name: open(os.path.join(directory, name), "rb").read() for name in sorted(os.listdir(directory))}
+
+
+def check(vivv, root, quick, slow, sig, jobs):
+    label = "%s, --jobs %d" % (signal.Signals(sig).name, jobs)
+    out, tmp = os.path.join(root, "out"), os.path.join(root, "tmp")
+    shutil.rmtree(root, ignore_errors=True)
+    os.makedirs(tmp)
+    env = dict(os.environ, TMPDIR=tmp)
+    subprocess.run([vivv, "run", quick, "--out", out, "--quiet"], env=env, check=True, stdout=subprocess.DEVNULL)
+    before = snapshot(out)
+    process = subprocess.Popen([vivv, "run", *slow, "--jobs", str(jobs), "--out", out, "--quiet"], env=env,
+                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    time.sleep(1.5)
+    if process.poll() is not None:
+        return ["%s: the slow run ended before it was interrupted (exit %d)" % (label, process.returncode)]
+    process.send_signal(sig)
+    try:
+        _, stderr = process.communicate(timeout=30)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        return ["%s: still running 30 s after the signal" % label]
+    problems = []
+    if process.returncode != -sig:
+        problems.append("%s: exit status %d, expected death by the signal (%d); stderr: %s"
+                        % (label, process.returncode, -sig, stderr.decode(errors="replace")[-300:]))
+    after = snapshot(out)
+    if after != before:
+        problems.append("%s: the output directory changed: %s -> %s" % (label, sorted(before), sorted(after)))
+    if os.listdir(tmp):
+        problems.append("%s: left in $TMPDIR: %s" % (label, os.listdir(tmp)))
+    survivors = vivv_processes(vivv, out)  # by its --out: other tests may run the same cases
+    if survivors:
+        problems.append("%s: workers still running: %s" % (label, survivors))
+        for pid in survivors:
+            os.kill(pid, signal.SIGKILL)
+    return problems
+
+
+def vivv_processes(vivv, argument):
+    """Pids of processes running `vivv` with `argument` among their arguments."""
+    found = []
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            arguments = open("/proc/%s/cmdline" % entry, "rb").read().split(b"\0")
+        except OSError:
+            continue
+        if arguments and arguments[0] == vivv.encode() and argument.encode() in arguments:
+            found.append(int(entry))
+    return found
+
+
+def main(argv):
+    if len(argv) < 5:
+        print(__doc__, file=sys.stderr)
+        return 2
+    vivv, root, quick, slow = argv[1], argv[2], argv[3], argv[4:]
+    problems = []
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        for jobs in (1, 2):
+            problems += check(vivv, os.path.join(root, "%s-%d" % (sig.name, jobs)), quick, slow, sig, jobs)
+    for problem in problems:
+        print(problem)
+    print("interrupt: %s" % ("ok" if not problems else "%d problems" % len(problems)))
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
