@@ -1,6 +1,7 @@
 // vivv: the command-line tool (docs/case-files.md).
 //
-//   vivv run [CASE.json ...] [--out DIR] [--digits D] [--scalar S] [--jobs J] [--shard I/N] [--refine] [--progress]
+//   vivv run [CASE.json ...] [--out DIR] [--digits D] [--scalar S] [--jobs J] [--shard I/N] [--refine]
+//            [--max-seconds S] [--progress]
 //   vivv report REPORT.json [MORE.json ...] --out DIR   (merge and re-render)
 //   vivv list
 //   vivv bench reference|del
@@ -17,6 +18,7 @@
 #include <array>
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -60,6 +62,7 @@ struct RunOptions {
   std::optional<std::string> scalar;
   int jobs = 1;
   std::optional<Shard> shard;
+  std::optional<int> max_seconds;  // --max-seconds: each case's budget of wall time
   bool progress = isatty(STDERR_FILENO);
   bool refine = false;
 };
@@ -135,6 +138,7 @@ RunOptions parse_run_options(const std::vector<std::string>& args) {
         throw BadInput("--scalar: expected double, \"long double\", float128 or mpfr, got '" + *options.scalar + "'");
     } else if (arg == "--jobs") options.jobs = parse_integer(arg, value(), 1, 64);
     else if (arg == "--shard") options.shard = parse_shard(value());
+    else if (arg == "--max-seconds") options.max_seconds = parse_integer(arg, value(), 1, 1000000);
     else if (arg == "--progress") options.progress = true;
     else if (arg == "--quiet") options.progress = false;
     else if (arg == "--refine") options.refine = true;
@@ -143,6 +147,25 @@ RunOptions parse_run_options(const std::vector<std::string>& args) {
   }
   if (options.case_files.empty()) options.case_files = default_suite();
   return options;
+}
+
+// --max-seconds: what the case was computing when its budget ran out (the last progress
+// message, kept where the alarm handler can write it without allocating), and the budget.
+char budget_message[512] = "";
+std::size_t budget_message_length = 0;
+int budget_seconds = 0;
+
+void note_phase(const std::string& file, const std::string& phase) {
+  const std::string text = "vivv: " + file.substr(0, 200) + ": the case ran past its budget of " +
+                           std::to_string(budget_seconds) + " s (--max-seconds) while computing: " +
+                           phase.substr(0, 200) + "; no report written\n";
+  budget_message_length = std::min(text.size(), sizeof budget_message);
+  std::memcpy(budget_message, text.data(), budget_message_length);
+}
+
+extern "C" void budget_exhausted(int) {
+  [[maybe_unused]] auto written = ::write(STDERR_FILENO, budget_message, budget_message_length);
+  std::_Exit(2);  // exit_bad_input: nothing was written
 }
 
 // Progress on stderr: elapsed seconds and what is being computed.
@@ -163,7 +186,21 @@ nlohmann::json run_one(const CaseSpec& spec, const RunOptions& options) {
     if (options.digits && effective.scalar != "mpfr")
       throw BadInput("--digits sets the MPFR working precision, and this case runs in \"" +
                      effective.scalar + "\"");
-    return case_json(run_case(effective, options.digits, options.refine, progress_printer(options.progress)));
+    std::function<void(const std::string&)> progress = progress_printer(options.progress);
+    if (options.max_seconds) {
+      // The budget: SIGALRM after max_seconds ends the process with the phase it was in.
+      budget_seconds = *options.max_seconds;
+      note_phase(spec.file, "reading the case");
+      signal(SIGALRM, budget_exhausted);
+      alarm(static_cast<unsigned>(budget_seconds));
+      progress = [print = std::move(progress), file = spec.file](const std::string& message) {
+        note_phase(file, message);
+        if (print) print(message);
+      };
+    }
+    nlohmann::json result = case_json(run_case(effective, options.digits, options.refine, progress));
+    if (options.max_seconds) alarm(0);
+    return result;
   } catch (const CaseError&) {
     throw;  // names the file and the field already
   } catch (const SolverError& error) {
@@ -405,7 +442,7 @@ int command_list() {
 
 int usage(std::ostream& out, int code) {
   out << "usage: vivv run [CASE.json ...] [--out DIR] [--digits D] [--scalar S] [--jobs J] [--shard I/N] [--refine]\n"
-         "                [--progress|--quiet]\n"
+         "                [--max-seconds S] [--progress|--quiet]\n"
          "       vivv report REPORT.json [MORE.json ...] --out DIR\n"
          "       vivv list\n"
          "       vivv bench reference|del\n";
