@@ -15,8 +15,20 @@
 
 namespace vivv {
 
+namespace {
+
+// At most `limit` characters of `text`, and how many more there were: a hostile input's
+// 100 000-character key or value must not become a message of that size.
+std::string excerpt(const std::string& text, std::size_t limit) {
+  if (text.size() <= limit) return text;
+  return text.substr(0, limit) + "... (" + std::to_string(text.size() - limit) + " more characters)";
+}
+
+}  // namespace
+
 CaseError::CaseError(const std::string& file, const std::string& field, const std::string& message)
-    : std::runtime_error(file + ": " + (field.empty() ? "" : "field '" + field + "': ") + message),
+    : std::runtime_error(file + ": " + (field.empty() ? "" : "field '" + excerpt(field, 120) + "': ") +
+                         excerpt(message, 2000)),
       file(file),
       field(field) {}
 

@@ -50,6 +50,16 @@ struct BadInput : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The message of bad input on stderr, at most 4000 characters of it (a hostile input's value
+// would otherwise be echoed whole); exit 2.
+int bad_input(const std::string& message) {
+  constexpr std::size_t limit = 4000;
+  std::cerr << "vivv: " << message.substr(0, limit);
+  if (message.size() > limit) std::cerr << "... (" << message.size() - limit << " more characters)";
+  std::cerr << "\n";
+  return exit_bad_input;
+}
+
 // --shard I/N: the cases at positions I − 1, I − 1 + N, I − 1 + 2N, ... of the suite.
 struct Shard {
   int index = 1, count = 1;
@@ -297,8 +307,7 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
         try {
           write_exclusively(work / (std::to_string(next) + ".json"), run_one(specs[next], options).dump());
         } catch (const std::exception& error) {
-          std::cerr << "vivv: " << error.what() << "\n";
-          code = exit_bad_input;
+          code = bad_input(error.what());
         }
         std::_Exit(code);
       }
@@ -478,20 +487,9 @@ int main(int argc, char** argv) {
     if (command == "--help" || command == "help") return usage(std::cout, exit_pass);
     std::cerr << "vivv: unknown command '" << command << "'\n";
     return usage(std::cerr, exit_bad_input);
-  } catch (const CaseError& error) {
-    std::cerr << "vivv: " << error.what() << "\n";
-    return exit_bad_input;
-  } catch (const BadInput& error) {
-    std::cerr << "vivv: " << error.what() << "\n";
-    return exit_bad_input;
-  } catch (const ReportError& error) {
-    std::cerr << "vivv: " << error.what() << "\n";
-    return exit_bad_input;
   } catch (const nlohmann::json::exception& error) {  // a report.json of the wrong shape
-    std::cerr << "vivv: malformed input: " << error.what() << "\n";
-    return exit_bad_input;
-  } catch (const std::exception& error) {  // nothing escapes main: exit 2 with what happened
-    std::cerr << "vivv: " << error.what() << "\n";
-    return exit_bad_input;
+    return bad_input(std::string("malformed input: ") + error.what());
+  } catch (const std::exception& error) {  // CaseError, BadInput, ReportError and anything else: exit 2
+    return bad_input(error.what());
   }
 }

@@ -1,0 +1,189 @@
+#!/usr/bin/env python3
+"""Corpus-driven fuzzing of what vivv reads: case files (with their formulas) and report.json.
+
+    fuzz_inputs.py VIVV CORPUS_DIR WORK_DIR [--mutations M] [--seed S]
+    fuzz_inputs.py --self-test WORK_DIR
+
+CORPUS_DIR/cases/*.json are case files, CORPUS_DIR/reports/*.json report.json files (the
+corpus kept in the repository). Every corpus file, and M deterministic mutations of each
+(seeded: the same inputs every run), goes through `vivv run` (cases) or `vivv report`
+(reports). Each must end with exit 0, 1 or 2 — never a signal (abort, segfault), never a
+hang (each run has --max-seconds 5 and a 60 s limit) — and an exit 2 must say "vivv:" and
+leave no report.json. A failing input is saved in WORK_DIR/failures/ to be added to the
+corpus once fixed. Exit 0 when every input behaved, 1 otherwise.
+"""
+import json
+import os
+import random
+import shutil
+import subprocess
+import sys
+
+EXTREME_NUMBERS = ["1e5000", "-1e5000", "1e-400", "0", "-0", "nan", "inf", "+2", ".5", "2.", "1" * 400,
+                   "0x10", "1/0", "", " 1", "1e", "-", "9" * 40]
+EXTREME_FORMULAS = ["", "(", "q^", "q^q^q^q^q^q^q", "sin(" * 200 + "q" + ")" * 200, "1/0", "sqrt(-1)",
+                    "log(0)", "q*", "L(q, w)", "w^2/2 - cos(q", "w^1e9", "exp(exp(exp(q)))", "q/(q-q)"]
+
+
+def mutate_json(value, rng):
+    """One structural edit somewhere in a parsed JSON value."""
+    if isinstance(value, dict) and value and rng.random() < 0.8:
+        key = rng.choice(sorted(value))
+        choice = rng.random()
+        if choice < 0.15:
+            del value[key]
+        elif choice < 0.3:
+            value[key] = rng.choice([None, True, 3, -1, 1e308, "x", [], {}, [[[]]]])
+        else:
+            value[key] = mutate_json(value[key], rng)
+        return value
+    if isinstance(value, list) and value and rng.random() < 0.8:
+        i = rng.randrange(len(value))
+        choice = rng.random()
+        if choice < 0.2:
+            del value[i]
+        elif choice < 0.35:
+            value.append(value[i])
+        else:
+            value[i] = mutate_json(value[i], rng)
+        return value
+    if isinstance(value, str):
+        if any(c.isalpha() for c in value) and rng.random() < 0.5:
+            return rng.choice(EXTREME_FORMULAS)
+        return rng.choice(EXTREME_NUMBERS)
+    if isinstance(value, bool) or value is None:
+        return rng.choice([0, "true", [], None])
+    if isinstance(value, (int, float)):
+        return rng.choice([0, -1, 2**31, 2**63, 10**30, 1e-320, 0.5, "4"])
+    return rng.choice([None, 0, "", [], {}])
+
+
+def mutate_text(text, rng):
+    """One byte-level edit: truncation, deletion, duplication, deep nesting or a stray byte."""
+    choice = rng.random()
+    if choice < 0.2:
+        return text[: rng.randrange(len(text) + 1)]
+    i, j = sorted(rng.randrange(len(text) + 1) for _ in range(2))
+    if choice < 0.4:
+        return text[:i] + text[j:]
+    if choice < 0.55:
+        return text[:j] + text[i:j] + text[j:]
+    if choice < 0.7:
+        depth = rng.choice([100, 10000, 100000])
+        return text[:i] + "[" * depth + "]" * depth + text[i:]
+    if choice < 0.8:
+        return text[:i] + '"a": 1, "a": 2, ' + text[i:]
+    return text[:i] + chr(rng.choice([0, 1, 0x1F, 0x7F, 0xE9, 0x2028])) + text[i:]
+
+
+def mutations(text, count, rng):
+    try:
+        parsed = json.loads(text)
+    except ValueError:
+        parsed = None
+    for k in range(count):
+        if parsed is not None and k % 2 == 0:
+            edited = mutate_json(json.loads(text), rng)
+            for _ in range(rng.randrange(2)):
+                edited = mutate_json(edited, rng)
+            yield json.dumps(edited)
+        else:
+            yield mutate_text(text, rng)
+
+
+def check(vivv, kind, path, work, exits=None):
+    out = os.path.join(work, "out")
+    shutil.rmtree(out, ignore_errors=True)
+    if kind == "cases":
+        command = [vivv, "run", path, "--out", out, "--quiet", "--max-seconds", "5"]
+    else:
+        command = [vivv, "report", path, "--out", out]
+    try:
+        result = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, timeout=60)
+    except subprocess.TimeoutExpired:
+        return "ran past 60 s"
+    stderr = result.stderr.decode(errors="replace")
+    if exits is not None:
+        exits[result.returncode] = exits.get(result.returncode, 0) + 1
+    if result.returncode < 0:
+        return "ended by signal %d: %s" % (-result.returncode, stderr[-300:])
+    if result.returncode not in (0, 1, 2):
+        return "exit %d: %s" % (result.returncode, stderr[-300:])
+    if result.returncode == 2:
+        if "vivv:" not in stderr:
+            return "exit 2 without a message: %r" % stderr[-300:]
+        if os.path.exists(os.path.join(out, "report.json")):
+            return "exit 2 but a report.json was written"
+        if len(stderr) > 20000:
+            return "a message of %d characters" % len(stderr)
+    return None
+
+
+def self_test(work):
+    """The checker's negative control: a program that crashes, one that hangs past its
+    limit is not tried (60 s), one that exits 2 silently, one that exits 2 but writes a report."""
+    os.makedirs(work, exist_ok=True)
+    path = os.path.join(work, "input.json")
+    open(path, "w").write("{}")
+    programs = {
+        "segfault": "kill -SEGV $$",
+        "silent exit 2": "exit 2",
+        "report on exit 2": 'mkdir -p "$4"; echo {} > "$4/report.json"; echo "vivv: bad" >&2; exit 2',
+    }
+    problems = 0
+    for name, body in programs.items():
+        fake = os.path.join(work, "fake-vivv")
+        open(fake, "w").write("#!/bin/sh\n" + body + "\n")
+        os.chmod(fake, 0o755)
+        if check(fake, "cases", path, work) is None:
+            print("self-test: the checker accepted a program that does '%s'" % name)
+            problems += 1
+    print("fuzz self-test: %s" % ("ok" if not problems else "%d problems" % problems))
+    return 1 if problems else 0
+
+
+def main(argv):
+    args = argv[1:]
+    if len(args) == 2 and args[0] == "--self-test":
+        return self_test(args[1])
+    count, seed = 20, 1
+    if "--mutations" in args:
+        i = args.index("--mutations")
+        count = int(args[i + 1])
+        del args[i : i + 2]
+    if "--seed" in args:
+        i = args.index("--seed")
+        seed = int(args[i + 1])
+        del args[i : i + 2]
+    if len(args) != 3:
+        print(__doc__, file=sys.stderr)
+        return 2
+    vivv, corpus, work = args
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(os.path.join(work, "failures"))
+    rng = random.Random(seed)
+    failures, inputs, exits = 0, 0, {}
+    for kind in ("cases", "reports"):
+        directory = os.path.join(corpus, kind)
+        for name in sorted(os.listdir(directory)):
+            text = open(os.path.join(directory, name), encoding="utf-8", errors="surrogateescape").read()
+            candidates = [text] + list(mutations(text, count, rng))
+            for k, candidate in enumerate(candidates):
+                path = os.path.join(work, "input.json")
+                with open(path, "w", encoding="utf-8", errors="surrogateescape") as f:
+                    f.write(candidate)
+                inputs += 1
+                problem = check(vivv, kind, path, work, exits)
+                if problem:
+                    failures += 1
+                    saved = os.path.join(work, "failures", "%s-%s-%d.json" % (kind, name[:-5], k))
+                    shutil.copy(path, saved)
+                    print("%s: %s" % (saved, problem))
+    print("fuzz: %d inputs (%d corpus files, %d mutations each, seed %d), exit codes %s, %d failures"
+          % (inputs, inputs // (count + 1), count, seed,
+             ", ".join("%d: %d" % item for item in sorted(exits.items())), failures))
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
