@@ -379,11 +379,15 @@ int command_run(const std::vector<std::string>& args, const std::string& command
   }
   nlohmann::json report = assemble_report(cases, {command_line, library_versions()});
   report["run"]["case_paths"] = case_paths;
-  if (options.shard)
+  if (options.shard) {
+    nlohmann::json suite = nlohmann::json::array();  // every shard's check that it split the same list
+    for (const auto& spec : specs) suite.push_back(spec.name);
     report["run"]["shard"] = {{"index", options.shard->index},
                               {"count", options.shard->count},
                               {"suite_size", specs.size()},
+                              {"suite", suite},
                               {"positions", positions}};
+  }
   return write_reports(options.out, report);
 }
 

@@ -216,12 +216,19 @@ std::optional<std::vector<std::size_t>> shard_positions(
     if (auto [it, fresh] = shards.emplace(index, file); !fresh)
       throw ReportError(file + ": run.shard: shard " + std::to_string(index) + " of " + std::to_string(count) +
                         " is also " + it->second);
+    if (shard.at("suite") != reference.at("suite") || shard.at("suite").size() != size)
+      throw ReportError(file + ": run.shard.suite: not the list of cases " + first->first +
+                        " was split from: every shard must be given the same case files in the same order");
     const nlohmann::json& at = shard.at("positions");
     if (!at.is_array() || at.size() != report.at("cases").size())
       throw ReportError(file + ": run.shard.positions: expected one position per case");
-    for (const auto& position : at) {
+    for (std::size_t i = 0; i < at.size(); ++i) {
+      const nlohmann::json& position = at[i];
       const auto k = position.get<std::size_t>();
       if (k >= size) throw ReportError(file + ": run.shard.positions: " + position.dump() + " is outside the suite");
+      if (report["cases"][i].at("name") != shard["suite"][k])
+        throw ReportError(file + ": cases[" + std::to_string(i) + "]: '" + report["cases"][i]["name"].get<std::string>() +
+                          "' is not the suite's case at position " + std::to_string(k));
       if (auto [it, fresh] = positions.emplace(k, file); !fresh)
         throw ReportError(file + ": run.shard.positions: position " + position.dump() + " is also in " + it->second);
       order.push_back(k);

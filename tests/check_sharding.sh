@@ -30,6 +30,17 @@ case "$mode" in
     fi
     grep -q "shard 1 of 2 is missing" "$out/incomplete.log" || { cat "$out/incomplete.log"; exit 1; }
     test ! -e "$out/incomplete/report.json"
+    # ... nor does a shard of another list of cases (here the same cases, reversed).
+    reversed=""
+    for case_file in "$@"; do reversed="$case_file $reversed"; done
+    # shellcheck disable=SC2086
+    "$vivv" run $reversed --shard 1/2 --out "$out/reversed1" --quiet > /dev/null || true
+    if "$vivv" report "$out/reversed1/report.json" "$out/shard2/report.json" --out "$out/foreign" \
+         > "$out/foreign.log" 2>&1; then
+      echo "merging shards of two different case lists was accepted"; exit 1
+    fi
+    grep -q "run.shard.suite: not the list of cases" "$out/foreign.log" || { cat "$out/foreign.log"; exit 1; }
+    test ! -e "$out/foreign/report.json"
     ;;
   *) echo "usage: check_sharding.sh jobs|shards VIVV OUT CASE.json ..." >&2; exit 2 ;;
 esac
