@@ -12,6 +12,21 @@
 
 namespace vivv {
 
+// A case whose motion over T is not above the round-off floor measures nothing: every error
+// would be "at the floor" and every lower bound on an order would hold vacuously (T = 1e-400
+// once passed lagrangian-order that way). Bad input naming T, the motion and the floor.
+template <LagrangianSystem System>
+void check_motion_above_floor(const CaseContext<System>& context) {
+  using T = typename System::Scalar;
+  const T motion = state_distance(context.exact(context.final_time), context.initial);
+  if (motion > context.floor()) return;
+  throw CaseError(context.spec.file, "T",
+                  "the motion over T (|F_T(x0) - x0| = " + format_scalar(motion) +
+                      ") is not above the round-off floor " + format_scalar(context.floor()) +
+                      ": the method's errors could not be told from rounding; take a larger T or "
+                      "an initial state that moves");
+}
+
 template <LagrangianSystem System>
 void run_on_system(const System& system, CaseSpec& spec, CaseResult& result, bool refine,
                    const std::function<void(const std::string&)>& progress) {
@@ -23,6 +38,7 @@ void run_on_system(const System& system, CaseSpec& spec, CaseResult& result, boo
     if (refine) context.fit_options.asymptote_tolerance = context.order_tolerance / 4;
     if (round == 0) {
       check_declared_orders(context);
+      check_motion_above_floor(context);
       result.reference_method = context.reference.method();
       result.reference_tolerance = to_decimal<T>(context.reference.tolerance());
       result.reference_cross_check = context.reference.cross_check();
