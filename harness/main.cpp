@@ -477,8 +477,15 @@ int main(int argc, char** argv) {
   std::string command = args.front();
   args.erase(args.begin());
   try {
+    // `vivv run --help`, `vivv report -h`, ...: the usage, exit 0.
+    if (std::find_if(args.begin(), args.end(), [](const std::string& a) { return a == "--help" || a == "-h"; }) !=
+        args.end())
+      return usage(std::cout, exit_pass);
     if (command == "run") return command_run(args, command_line);
-    if (command == "list") return command_list();
+    if (command == "list") {
+      if (!args.empty()) return bad_input("vivv list takes no arguments, got '" + args.front() + "'");
+      return command_list();
+    }
     if (command == "bench" && args.size() == 1 && args[0] == "reference")
       return run_reference_benchmark(std::cout);
     if (command == "bench" && args.size() == 1 && args[0] == "del") return run_del_benchmark(std::cout);
