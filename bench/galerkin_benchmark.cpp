@@ -13,6 +13,7 @@
 #include <map>
 #include <string>
 
+#include "bench/counted_system.hpp"
 #include "cases/systems.hpp"
 #include "core/del_evolution.hpp"
 #include "core/galerkin.hpp"
@@ -22,16 +23,7 @@ namespace {
 using vivv::mpfr_real;
 constexpr int digits = 77;  // 256 bits
 
-// The system with a counter of its Lagrangian's evaluations.
-template <class System>
-struct Counted : System {
-  static inline long evaluations = 0;
-  template <class S>
-  S lagrangian(const vivv::Point<S, System::dimension>& q, const vivv::Point<S, System::dimension>& w) const {
-    ++evaluations;
-    return System::lagrangian(q, w);
-  }
-};
+using vivv::Counted;
 
 vivv::QxQDiscretization<mpfr_real> degree_four_gauss() {
   vivv::QxQDiscretization<mpfr_real> d;

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "bench/counted_system.hpp"
 #include "cases/systems.hpp"
 #include "core/del_evolution.hpp"
 #include "core/lagrangian.hpp"
@@ -17,17 +18,6 @@ namespace vivv {
 namespace {
 
 constexpr double target_ratio = 3;
-
-// The system with a count of its Lagrangian's evaluations, in any scalar or jet.
-template <class System>
-struct Counted : System {
-  static inline long evaluations = 0;
-  template <class S>
-  S lagrangian(const Point<S, System::dimension>& q, const Point<S, System::dimension>& w) const {
-    ++evaluations;
-    return System::lagrangian(q, w);
-  }
-};
 
 // Keeps the compiler from dropping a computation whose result is unused (as Google
 // Benchmark's DoNotOptimize): the object must exist in memory.

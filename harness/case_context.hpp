@@ -229,6 +229,7 @@ struct CaseContext {
   std::conditional_t<has_closed_form_v<System>, ReferenceFlow<System>, TaylorReference<System>> reference;
   State<T, n> initial;
   T final_time;
+  State<T, n> final_state;  // the reference state at final_time, computed once
   DelScheme<T> scheme;                    // formalism "qxq"
   std::optional<TQDiscretization<T>> tq;  // formalism "tq"
   std::optional<TQDiscretization<T>> tq_compare;  // contact-order's second discretization
@@ -248,6 +249,7 @@ struct CaseContext {
       initial.q[i] = from_decimal<T>(spec.q[i]);
       initial.w[i] = from_decimal<T>(spec.w[i]);
     }
+    final_state = reference.advance(initial, final_time);
     if (spec.discretization.formalism == "tq") {
       // An exact psi runs at the reference's step tolerance.
       T curve_tolerance = reference.tolerance() / 1000;

@@ -175,7 +175,7 @@ void note_phase(const std::string& file, const std::string& phase) {
 
 extern "C" void budget_exhausted(int) {
   [[maybe_unused]] auto written = ::write(STDERR_FILENO, budget_message, budget_message_length);
-  std::_Exit(2);  // exit_bad_input: nothing was written
+  std::_Exit(exit_bad_input);  // nothing was written
 }
 
 // Progress on stderr: elapsed seconds and what is being computed.

@@ -84,7 +84,7 @@ struct GlobalOrderClaim : Claim<GlobalOrderClaim> {
     constexpr int n = System::dimension;
     ClaimResult claim = result();
     SweepRun<System> run = run_sweep(context, context.scheme);
-    State<T, n> final_state = context.exact(context.final_time);
+    const State<T, n>& final_state = context.final_state;
     Vector<T, n> p_exact = momentum(context.system, final_state.q, final_state.w);
     std::vector<T> q_error, p_error;
     for (std::size_t i = 0; i < run.q_final.size(); ++i) {

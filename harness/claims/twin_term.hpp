@@ -217,7 +217,7 @@ struct MismatchedLegendreClaim : Claim<MismatchedLegendreClaim> {
     claim.evidence["same_rule"] = same;
     claim.evidence["twin_mismatch_power"] = mismatch.power ? nlohmann::json(*mismatch.power) : nlohmann::json();
     SweepRun<System> run = run_sweep(context, context.scheme);
-    State<T, n> final_state = context.exact(context.final_time);
+    const State<T, n>& final_state = context.final_state;
     std::vector<T> error;
     for (const auto& q : run.q_final) error.push_back(max_norm<T, n>(q - final_state.q));
     if (order >= 1) {

@@ -1,0 +1,19 @@
+// A Lagrangian system that counts its Lagrangian's evaluations, in any scalar or jet: what
+// the benchmarks divide a step's time by (bench/galerkin_benchmark.cpp, `vivv bench del`).
+#pragma once
+
+#include "core/lagrangian.hpp"
+
+namespace vivv {
+
+template <class System>
+struct Counted : System {
+  static inline long evaluations = 0;
+  template <class S>
+  S lagrangian(const Point<S, System::dimension>& q, const Point<S, System::dimension>& w) const {
+    ++evaluations;
+    return System::lagrangian(q, w);
+  }
+};
+
+}  // namespace vivv
