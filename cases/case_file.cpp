@@ -12,6 +12,7 @@
 #include "cases/formula_parser.hpp"
 #include "core/discrete_lagrangian.hpp"
 #include "core/formula_system.hpp"
+#include "core/odeint_map.hpp"
 
 namespace vivv {
 
@@ -284,6 +285,21 @@ DiscretizationSpec read_discretization(Reader reader, int dimension,
                                        const std::vector<std::pair<std::string, std::string>>& parameters,
                                        bool allow_tq = true) {
   DiscretizationSpec spec;
+  if (reader.has("kind") && reader.get("kind") == "odeint") {
+    // A one-step map of another library: no formalism, no twin term, nothing but its name.
+    if (!allow_tq) reader.fail("kind", "a one-step map cannot be pulled back as a Q×Q discrete Lagrangian");
+    if (reader.has("formalism"))
+      reader.fail("formalism", "a one-step map (kind \"odeint\") is neither a Q×Q nor a TQ discretization: "
+                               "leave formalism out");
+    spec.formalism = "map";
+    spec.kind = "odeint";
+    std::vector<std::string> names;
+    for (const auto& stepper : odeint_steppers()) names.push_back(stepper.name);
+    spec.stepper = reader.one_of("stepper", names);
+    if (reader.has("twin")) reader.fail("twin", "a one-step map has no discrete Lagrangian to add a twin term to");
+    reader.finish();
+    return spec;
+  }
   if (reader.has("formalism"))
     spec.formalism = reader.one_of("formalism", allow_tq ? std::vector<std::string>{"qxq", "tq"}
                                                          : std::vector<std::string>{"qxq"});
@@ -585,6 +601,10 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
       throw CaseError(file, where, "twin-term-invariance needs discretization.twin");
     if (id == "mismatched-legendre" && !spec.past_discretization)
       throw CaseError(file, where, "mismatched-legendre needs past_discretization");
+    if (spec.discretization.formalism == "map" && !map_claim_ids().count(id))
+      throw CaseError(file, where, id + " is a claim about discrete Lagrangians, and discretization kind \"odeint\" "
+                                        "is a one-step map without one: a map takes " + join(std::vector<std::string>(
+                                            map_claim_ids().begin(), map_claim_ids().end())));
     bool tq = spec.discretization.formalism == "tq";
     if (!tq && tq_claim_ids().count(id))
       throw CaseError(file, where, id + " is a claim about discretizations of TQ: needs discretization.formalism \"tq\"");
@@ -626,6 +646,14 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
                                    (spec.discretization.twin ? " with a twin term" : ""));
     if (id == "qxq-tq-equivalence" && (!tq || spec.discretization.tq->lagrangian != "pullback"))
       throw CaseError(file, where, "qxq-tq-equivalence needs a TQ discretization with lagrangian \"pullback\"");
+  }
+  if (spec.discretization.formalism == "map") {
+    if (spec.past_discretization)
+      reader.fail("past_discretization", "a one-step map has no past side: the DEL it would mismatch is not there");
+    if (spec.compare_discretization)
+      reader.fail("compare_discretization", "the claims that compare two discretizations are not claims about maps");
+    if (spec.start != "reference")
+      reader.fail("start", "a one-step map starts from the exact initial state (q0, w0); \"momentum\" starts a DEL");
   }
   if (spec.past_discretization && spec.past_discretization->formalism != spec.discretization.formalism)
     reader.fail("past_discretization", "expected the same formalism as discretization");

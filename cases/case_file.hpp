@@ -52,7 +52,7 @@ struct TQSpec {
 };
 
 struct DiscretizationSpec {
-  std::string formalism = "qxq";         // "qxq" or "tq"
+  std::string formalism = "qxq";         // "qxq", "tq", or "map" for kind "odeint"
   std::string kind;                      // a Q×Q rule name (core/discrete_lagrangian.hpp)
   std::optional<std::string> parameter;  // "alpha" or "beta", for the rules that take one
   // kind "expression": L_d as a formula in qb, qe, h, L(x, v) and the system's parameters, and
@@ -63,6 +63,7 @@ struct DiscretizationSpec {
   // kind "galerkin": degree s of the curve, "gauss" or "lobatto", and the number of nodes.
   int galerkin_degree = 0, galerkin_nodes = 0;
   std::string galerkin_quadrature;
+  std::string stepper;  // kind "odeint": one of odeint_steppers() (core/odeint_map.hpp)
   std::optional<TwinSpec> twin;
   std::optional<TQSpec> tq;              // formalism "tq"
 };

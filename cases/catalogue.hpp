@@ -50,6 +50,13 @@ inline const std::set<std::string>& tq_claim_ids() {
   return ids;
 }
 
+// Claims that apply to a one-step map (discretization kind "odeint"): the others are about
+// the discrete Lagrangian a map does not have.
+inline const std::set<std::string>& map_claim_ids() {
+  static const std::set<std::string> ids = {"global-order", "symplecticity", "energy-behaviour", "discrete-noether"};
+  return ids;
+}
+
 struct SystemInfo {
   std::string name;
   int dimension;

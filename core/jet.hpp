@@ -37,6 +37,13 @@ struct Jet {
     clear_derivatives();
   }
 
+  // A floating-point constant as another library writes it (odeint's 1.0): converted to T exactly
+  // when T has at least its precision; vivv's own code writes T(1) / 2 instead.
+  template <class F, std::enable_if_t<std::is_floating_point_v<F> && !std::is_same_v<F, T>, int> = 0>
+  Jet(F constant) : value(constant) {  // NOLINT
+    clear_derivatives();
+  }
+
   // The independent variable number `index` at `at`.
   static Jet variable(const T& at, int index) {
     Jet x(at);

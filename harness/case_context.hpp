@@ -14,6 +14,7 @@
 #include "core/del_evolution.hpp"
 #include "core/euler_lagrange_tape.hpp"
 #include "core/formula_discretization.hpp"
+#include "core/odeint_map.hpp"
 #include "core/state.hpp"
 #include "core/tq_evolution.hpp"
 #include "core/quadrature.hpp"
@@ -234,6 +235,7 @@ struct CaseContext {
   std::optional<TQDiscretization<T>> tq;  // formalism "tq"
   std::optional<TQDiscretization<T>> tq_compare;  // contact-order's second discretization
   std::optional<TQDiscretization<T>> tq_past;     // past-future-symmetry: a mismatched past segment
+  std::shared_ptr<const OneStepMap<T, n>> map;    // formalism "map": another library's stepper
   double order_tolerance;
   FitOptions fit_options;  // --refine tightens the asymptotic range (harness/run_case.cpp)
   std::function<void(const std::string&)> progress;
@@ -250,6 +252,7 @@ struct CaseContext {
       initial.w[i] = from_decimal<T>(spec.w[i]);
     }
     final_state = reference.advance(initial, final_time);
+    if (spec.discretization.formalism == "map") map = make_map();
     if (spec.discretization.formalism == "tq") {
       // An exact psi runs at the reference's step tolerance.
       T curve_tolerance = reference.tolerance() / 1000;
@@ -267,6 +270,20 @@ struct CaseContext {
     // The initial state must be inside the Lagrangian's domain and regular
     // there; otherwise this throws SingularLagrangianError naming the state.
     euler_lagrange_acceleration(system, initial.q, initial.w);
+  }
+
+  // The odeint stepper of the case on the system's separable form, after checking that L is
+  // ½ wᵀ M w − V(q) with M constant at the initial and final states and their two mixtures.
+  std::shared_ptr<const OneStepMap<T, n>> make_map() const {
+    std::vector<State<T, n>> samples = {initial, final_state, {initial.q, final_state.w}, {final_state.q, initial.w}};
+    if (auto defect = separability_defect(system, samples))
+      throw CaseError(spec.file, "discretization.stepper",
+                      "odeint's " + spec.discretization.stepper +
+                          " steps a separable system, L = 1/2 w^T M w - V(q) with M constant, and this "
+                          "Lagrangian is not one: " + defect->quantity + " = " + format_scalar(defect->size) +
+                          " at q = " + to_decimal<T>(defect->at.q[0]) + ", w = " + to_decimal<T>(defect->at.w[0]) +
+                          (n > 1 ? " (first components)" : ""));
+    return make_odeint_map<T, n>(spec.discretization.stepper, separable_form(system, initial));
   }
 
   // h = T/N for every N of the sweep.
@@ -288,6 +305,7 @@ struct CaseContext {
   // is an order-1 L_d with an order-2 map. On a mismatched pair it is the order
   // the variational integrator would have; the mismatch is what fails it.
   int map_order() const {
+    if (map) return map->order();
     if (tq) return evolution_order(*tq);
     return std::min(scheme.future.rule_order(), scheme.past.rule_order());
   }

@@ -445,6 +445,13 @@ int command_list() {
   std::cout << "discretizations of TQ (\"formalism\": \"tq\", \"theta\": a fraction in [0, 1]):\n"
                "  psi: linear | taylor (with \"r\": 1..8) | exact\n"
                "  lagrangian: quadrature (with \"nodes\") | pullback (with a Q×Q \"qxq\") | exact (psi exact only)\n";
+  std::cout << "one-step maps of Boost.Odeint (\"kind\": \"odeint\", \"stepper\"; a separable system "
+               "1/2 w^T M w - V(q); claims";
+  for (const auto& id : map_claim_ids()) std::cout << " " << id;
+  std::cout << "):\n";
+  for (const auto& stepper : odeint_steppers())
+    std::cout << "  " << stepper.name << " (order " << stepper.order << (stepper.symplectic ? ", symplectic" : ", not symplectic")
+              << ")\n";
   std::cout << "claims:\n";
   for (const auto& claim : registered_claims())
     std::cout << "  " << claim.id << " [" << claim.source << "]: " << claim.prediction << "\n";

@@ -29,49 +29,78 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
   static ClaimResult evaluate(const CaseContext<System>& context) {
     using T = typename System::Scalar;
     constexpr int n = System::dimension;
-    using std::max;
     ClaimResult claim = result();
     PerStepCheck<T> check;
-    visit_trajectories(context, "symplecticity: Jacobians", [&](const T& h, const auto& q) {
-      const int N = static_cast<int>(q.size()) - 1;
-      Matrix<T, 2 * n, 2 * n> composition = Matrix<T, 2 * n, 2 * n>::Identity();
-      T worst_ratio = -1, worst_defect = 0, worst_tolerance = 0, largest_defect = 0, step_tolerance = 0;
-      for (int k = 0; k < N; ++k) {
-        auto future = discrete_legendre(context.system, context.scheme.future, q[k], q[k + 1], h);
-        auto past = discrete_legendre(context.system, context.scheme.past, q[k], q[k + 1], h);
-        const Matrix<T, 2 * n, 2 * n> jacobian = del_map_jacobian<T, n>(future, past);
-        composition = jacobian * composition;
-        const T size = max({T(1), max_entry<T, n, n>(future.dp_begin_dq_b), max_entry<T, n, n>(future.dp_begin_dq_e),
-                            max_entry<T, n, n>(past.dp_end_dq_b), max_entry<T, n, n>(past.dp_end_dq_e)});
-        const T entry = max(T(1), max_entry<T, 2 * n, 2 * n>(jacobian));
-        const T tolerance = ulps * epsilon<T>() * size * entry * entry;
-        const T defect = symplecticity_defect<T, 2 * n>(jacobian);
-        step_tolerance = max(step_tolerance, tolerance);
-        largest_defect = max(largest_defect, defect);
-        if (defect / tolerance > worst_ratio) worst_ratio = defect / tolerance, worst_defect = defect, worst_tolerance = tolerance;
-      }
-      const T composed = max(T(1), max_entry<T, 2 * n, 2 * n>(composition));
-      const T composite_defect = symplecticity_defect<T, 2 * n>(composition);
-      const T composite_tolerance = T(N) * step_tolerance * composed * composed;
-      check.add(h, worst_defect, worst_tolerance,
-                {{"N", N},
-                 {"largest_step_defect", to_decimal<T>(largest_defect)},
-                 {"composite_defect", to_decimal<T>(composite_defect)},
-                 {"composite_tolerance", to_decimal<T>(composite_tolerance)}},
-                composite_defect <= composite_tolerance);
-    });
-    claim.evidence["jacobian"] =
-        "implicit function theorem: dq'/d(q, p) = B_e^-1 (-B_b, I), dp'/d(q, p) = (E_b, 0) + E_e dq'/d(q, p) "
-        "with B = d p_begin[L_d], E = d p_end[past L_d] at (q_k, q_k+1)";
-    claim.evidence["tolerance_rule"] = std::to_string(ulps) +
-                                       " ulps × max(1, |Hessian blocks|) × max(1, |J|)² per step (measured: the "
-                                       "step with the largest defect/tolerance); N × that × max(1, |J_N…J_1|)² "
-                                       "for the composition";
-    claim.evidence["mismatched_del"] = context.scheme.mismatched;
+    if (context.map) {
+      // A one-step map: its Jacobian by jets through its own code; no Hessian blocks to size.
+      visit_map_trajectories(context, "symplecticity: Jacobians", [&](const T& h, const auto& x) {
+        std::vector<Matrix<T, 2 * n, 2 * n>> jacobians;
+        for (std::size_t k = 0; k + 1 < x.size(); ++k) jacobians.push_back(context.map->jacobian(x[k], h));
+        judge<T, n>(check, h, jacobians, std::vector<T>(jacobians.size(), T(1)));
+      });
+      claim.evidence["jacobian"] = "forward-mode automatic differentiation of one step of " + context.map->name() +
+                                   " in first-order jets over (q, p), w = M^-1 p";
+      claim.evidence["tolerance_rule"] = std::to_string(ulps) +
+                                         " ulps × max(1, |J|)² per step (measured: the step with the largest "
+                                         "defect/tolerance); N × that × max(1, |J_N…J_1|)² for the composition";
+    } else {
+      visit_trajectories(context, "symplecticity: Jacobians", [&](const T& h, const auto& q) {
+        using std::max;
+        std::vector<Matrix<T, 2 * n, 2 * n>> jacobians;
+        std::vector<T> sizes;
+        for (std::size_t k = 0; k + 1 < q.size(); ++k) {
+          auto future = discrete_legendre(context.system, context.scheme.future, q[k], q[k + 1], h);
+          auto past = discrete_legendre(context.system, context.scheme.past, q[k], q[k + 1], h);
+          jacobians.push_back(del_map_jacobian<T, n>(future, past));
+          sizes.push_back(max({T(1), max_entry<T, n, n>(future.dp_begin_dq_b), max_entry<T, n, n>(future.dp_begin_dq_e),
+                               max_entry<T, n, n>(past.dp_end_dq_b), max_entry<T, n, n>(past.dp_end_dq_e)}));
+        }
+        judge<T, n>(check, h, jacobians, sizes);
+      });
+      claim.evidence["jacobian"] =
+          "implicit function theorem: dq'/d(q, p) = B_e^-1 (-B_b, I), dp'/d(q, p) = (E_b, 0) + E_e dq'/d(q, p) "
+          "with B = d p_begin[L_d], E = d p_end[past L_d] at (q_k, q_k+1)";
+      claim.evidence["tolerance_rule"] = std::to_string(ulps) +
+                                         " ulps × max(1, |Hessian blocks|) × max(1, |J|)² per step (measured: the "
+                                         "step with the largest defect/tolerance); N × that × max(1, |J_N…J_1|)² "
+                                         "for the composition";
+      claim.evidence["mismatched_del"] = context.scheme.mismatched;
+    }
     check.conclude_claim(claim, context, "max_k |J_kᵀΩJ_k − Ω| (worst step against its tolerance)",
                          "symplectic to working precision at every step and every h, and so is the N-step map",
                          "the (q, p) map is not symplectic (see per-step evidence)");
     return claim;
+  }
+
+ private:
+  // The verdict at one h from the step Jacobians J_k and the sizes s_k of what they were
+  // computed from: each step against ulps·ε·s_k·max(1, |J_k|)², the composition against N
+  // times the largest of those times max(1, |J_N…J_1|)².
+  template <class T, int n>
+  static void judge(PerStepCheck<T>& check, const T& h, const std::vector<Matrix<T, 2 * n, 2 * n>>& jacobians,
+                    const std::vector<T>& sizes) {
+    using std::max;
+    const int N = static_cast<int>(jacobians.size());
+    Matrix<T, 2 * n, 2 * n> composition = Matrix<T, 2 * n, 2 * n>::Identity();
+    T worst_ratio = -1, worst_defect = 0, worst_tolerance = 0, largest_defect = 0, step_tolerance = 0;
+    for (int k = 0; k < N; ++k) {
+      composition = jacobians[k] * composition;
+      const T entry = max(T(1), max_entry<T, 2 * n, 2 * n>(jacobians[k]));
+      const T tolerance = ulps * epsilon<T>() * sizes[k] * entry * entry;
+      const T defect = symplecticity_defect<T, 2 * n>(jacobians[k]);
+      step_tolerance = max(step_tolerance, tolerance);
+      largest_defect = max(largest_defect, defect);
+      if (defect / tolerance > worst_ratio) worst_ratio = defect / tolerance, worst_defect = defect, worst_tolerance = tolerance;
+    }
+    const T composed = max(T(1), max_entry<T, 2 * n, 2 * n>(composition));
+    const T composite_defect = symplecticity_defect<T, 2 * n>(composition);
+    const T composite_tolerance = T(N) * step_tolerance * composed * composed;
+    check.add(h, worst_defect, worst_tolerance,
+              {{"N", N},
+               {"largest_step_defect", to_decimal<T>(largest_defect)},
+               {"composite_defect", to_decimal<T>(composite_defect)},
+               {"composite_tolerance", to_decimal<T>(composite_tolerance)}},
+              composite_defect <= composite_tolerance);
   }
 };
 

@@ -1,0 +1,110 @@
+// One-step maps vivv did not write: x_{k+1} = Φ_h(x_k) on (q, w), e.g. a stepper of another
+// library, checked by the claims that apply to maps (global-order, symplecticity,
+// energy-behaviour, discrete-noether). The contract is what those claims measure:
+//   step(x, h)      Φ_h(x), in the working precision;
+//   jacobian(x, h)  ∂(q', p')/∂(q, p) of the map on (q, p), p = FL(q, w);
+//   order()         the order r the map's authors state: |Φ_h − F_h| = O(h^{r+1}).
+//
+// The first adapters (core/odeint_map.hpp) step a separable system
+//   L(q, w) = ½ wᵀ M w − V(q),  M constant,
+// so p = M w and q'' = M⁻¹ F(q) with F = −∇V = ∂L/∂q(q, 0): what a Störmer–Verlet or
+// Runge–Kutta–Nyström stepper takes. SeparableSystem carries M and F, the latter in the
+// working precision and in first-order jets over (q, p), through which the map's Jacobian is
+// computed exactly (no finite differences).
+#pragma once
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/jet.hpp"
+#include "core/lagrangian.hpp"
+#include "core/state.hpp"
+
+namespace vivv {
+
+template <class T, int n>
+struct OneStepMap {
+  virtual ~OneStepMap() = default;
+  virtual std::string name() const = 0;
+  virtual int order() const = 0;
+  // Φ_h(x) on (q, w).
+  virtual State<T, n> step(const State<T, n>& x, const T& h) const = 0;
+  // ∂(q', p')/∂(q, p) at x.
+  virtual Matrix<T, 2 * n, 2 * n> jacobian(const State<T, n>& x, const T& h) const = 0;
+};
+
+// The Jacobian's scalar: a value and its gradient in the 2n variables (q, p).
+template <class T, int n>
+using PhaseJet = Jet<T, 2 * n, 1>;
+
+// L(q, w) = ½ wᵀ M w − V(q): the mass matrix, its inverse and the force F(q) = −∇V(q).
+template <class T, int n>
+struct SeparableSystem {
+  Matrix<T, n, n> mass, inverse_mass;
+  std::function<std::array<T, n>(const std::array<T, n>&)> force;
+  std::function<std::array<PhaseJet<T, n>, n>(const std::array<PhaseJet<T, n>, n>&)> force_jet;
+};
+
+// F(q) = ∂L/∂q(q, 0) in scalar S (T or a jet over it), by one more first-order jet.
+template <LagrangianSystem System, class S>
+std::array<S, System::dimension> force_at(const System& system, const std::array<S, System::dimension>& q) {
+  constexpr int n = System::dimension;
+  using J = Jet<S, n, 1>;
+  Point<J, n> jet_q, jet_w;
+  for (int i = 0; i < n; ++i) {
+    jet_q[i] = J::variable(q[i], i);
+    jet_w[i] = J(S(0));
+  }
+  const J L = system.lagrangian(jet_q, jet_w);
+  std::array<S, n> force;
+  for (int i = 0; i < n; ++i) force[i] = L.gradient[i];
+  return force;
+}
+
+// Where `system` is not of the form ½ wᵀ M w − V(q) with M constant, as far as the states
+// `samples` show: ∂²L/∂w∂q ≠ 0, or ∂²L/∂w² differing from its value at the first sample, by
+// more than 1000 ε relative to the size of M.
+template <class T, int n>
+struct SeparabilityDefect {
+  std::string quantity;  // "d2L/dw dq" or "d2L/dw2 - d2L/dw2(first sample)"
+  T size;                // its largest entry
+  State<T, n> at;
+};
+
+template <LagrangianSystem System>
+std::optional<SeparabilityDefect<typename System::Scalar, System::dimension>> separability_defect(
+    const System& system, const std::vector<State<typename System::Scalar, System::dimension>>& samples) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  using std::max;
+  const auto first = lagrangian_derivatives(system, samples.front().q, samples.front().w);
+  const T allowed = 1000 * epsilon<T>() * max(T(1), T(first.d2L_dw2.cwiseAbs().maxCoeff()));
+  for (const auto& x : samples) {
+    const auto d = lagrangian_derivatives(system, x.q, x.w);
+    const T mixed = d.d2L_dwdq.cwiseAbs().maxCoeff();
+    const T varying = Matrix<T, n, n>(d.d2L_dw2 - first.d2L_dw2).cwiseAbs().maxCoeff();
+    if (mixed > allowed) return SeparabilityDefect<T, n>{"d2L/dw dq", mixed, x};
+    if (varying > allowed) return SeparabilityDefect<T, n>{"d2L/dw2 - d2L/dw2(first sample)", varying, x};
+  }
+  return std::nullopt;
+}
+
+// The separable form of `system` (mass from ∂²L/∂w² at `at`), for the map adapters.
+template <LagrangianSystem System>
+SeparableSystem<typename System::Scalar, System::dimension> separable_form(
+    const System& system, const State<typename System::Scalar, System::dimension>& at) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  SeparableSystem<T, n> separable;
+  separable.mass = lagrangian_derivatives(system, at.q, at.w).d2L_dw2;
+  separable.inverse_mass = separable.mass.inverse();
+  separable.force = [system](const std::array<T, n>& q) { return force_at(system, q); };
+  separable.force_jet = [system](const std::array<PhaseJet<T, n>, n>& q) { return force_at(system, q); };
+  return separable;
+}
+
+}  // namespace vivv
