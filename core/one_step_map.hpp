@@ -67,7 +67,7 @@ std::array<S, System::dimension> force_at(const System& system, const std::array
 
 // Where `system` is not of the form ½ wᵀ M w − V(q) with M constant, as far as the states
 // `samples` show: ∂²L/∂w∂q ≠ 0, or ∂²L/∂w² differing from its value at the first sample, by
-// more than 1000 ε relative to the size of M.
+// more than 1000 ε relative to the size of M, or not finite.
 template <class T, int n>
 struct SeparabilityDefect {
   std::string quantity;  // "d2L/dw dq" or "d2L/dw2 - d2L/dw2(first sample)"
@@ -87,8 +87,9 @@ std::optional<SeparabilityDefect<typename System::Scalar, System::dimension>> se
     const auto d = lagrangian_derivatives(system, x.q, x.w);
     const T mixed = d.d2L_dwdq.cwiseAbs().maxCoeff();
     const T varying = Matrix<T, n, n>(d.d2L_dw2 - first.d2L_dw2).cwiseAbs().maxCoeff();
-    if (mixed > allowed) return SeparabilityDefect<T, n>{"d2L/dw dq", mixed, x};
-    if (varying > allowed) return SeparabilityDefect<T, n>{"d2L/dw2 - d2L/dw2(first sample)", varying, x};
+    // Written so that a NaN (a sample outside L's domain) is a defect too, never a pass.
+    if (!(mixed <= allowed)) return SeparabilityDefect<T, n>{"d2L/dw dq", mixed, x};
+    if (!(varying <= allowed)) return SeparabilityDefect<T, n>{"d2L/dw2 - d2L/dw2(first sample)", varying, x};
   }
   return std::nullopt;
 }

@@ -15,12 +15,24 @@ struct SweepRun {
   std::vector<DelTrajectory<T, System::dimension>> trajectories;
 };
 
-// x_0 … x_N: N steps of the case's one-step map from the exact initial state.
+// x_0 … x_N: N steps of the case's one-step map from the exact initial state. A state that
+// leaves the finite numbers (an explicit map blown up by too large a step) is bad input naming
+// the step, N and h, not an error of NaN or infinity fitted into a verdict.
 template <LagrangianSystem System>
 std::vector<State<typename System::Scalar, System::dimension>> map_trajectory(const CaseContext<System>& context,
                                                                              const typename System::Scalar& h, int N) {
-  std::vector<State<typename System::Scalar, System::dimension>> x{context.initial};
-  for (int k = 0; k < N; ++k) x.push_back(context.map->step(x.back(), h));
+  using T = typename System::Scalar;
+  using std::isfinite;
+  std::vector<State<T, System::dimension>> x{context.initial};
+  for (int k = 0; k < N; ++k) {
+    x.push_back(context.map->step(x.back(), h));
+    for (int i = 0; i < System::dimension; ++i)
+      if (!isfinite(x.back().q[i]) || !isfinite(x.back().w[i]))
+        throw CaseError(context.spec.file, "steps",
+                        context.map->name() + " left the finite numbers at step " + std::to_string(k + 1) +
+                            " of N = " + std::to_string(N) + " (h = " + format_scalar(h, 6) +
+                            "): the step is too large for this map; increase the step counts");
+  }
   return x;
 }
 
