@@ -114,12 +114,15 @@ using Vector = Eigen::Matrix<T, n, 1>;
 template <class T, int rows, int cols>
 using Matrix = Eigen::Matrix<T, rows, cols>;
 
-// Max norm of a vector.
+// Max norm of a vector; NaN if a component is NaN (std::max would drop it and report 0).
 template <class T, int n>
 T max_norm(const Vector<T, n>& v) {
-  using std::abs;
+  using std::abs, std::isnan;
   T result = 0;
-  for (int i = 0; i < v.size(); ++i) result = std::max<T>(result, abs(v[i]));
+  for (int i = 0; i < v.size(); ++i) {
+    if (isnan(v[i])) return v[i];
+    result = std::max<T>(result, abs(v[i]));
+  }
   return result;
 }
 

@@ -3,7 +3,9 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,12 @@ template <class T>
 Series make_series(const std::string& label, const std::vector<T>& h, const std::vector<T>& error,
                    const T& floor, std::optional<double> predicted, bool exact, double tolerance,
                    const FitOptions& options = {}) {
+  using std::isfinite;
+  for (std::size_t i = 0; i < error.size(); ++i)
+    if (!isfinite(error[i]))
+      throw std::domain_error(label + " is " + to_decimal<T>(error[i]) + " at h = " + to_decimal<T>(h[i]) +
+                              ": the computation left the finite numbers (a step too large for the method, or a "
+                              "state outside the Lagrangian's domain); nothing is fitted to it");
   Series series;
   series.label = label;
   for (const auto& x : h) series.h.push_back(to_decimal<T>(x));

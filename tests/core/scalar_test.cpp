@@ -46,3 +46,28 @@ TEST(Scalar, EigenSolvesInQuadAndMpfr) {
 
 }  // namespace
 }  // namespace vivv
+
+namespace vivv {
+namespace {
+
+// A NaN component makes the max norm NaN in every scalar: std::max alone would drop it and
+// report the other components' maximum (a blown-up run once measured an error of 0 that way).
+template <class T>
+void expect_nan_norm() {
+  Vector<T, 3> v;
+  v << T(1), std::numeric_limits<T>::quiet_NaN(), T(2);
+  using std::isnan;
+  EXPECT_TRUE(isnan(max_norm<T, 3>(v))) << scalar_name<T>();
+  v[1] = T(-3);
+  EXPECT_EQ((max_norm<T, 3>(v)), T(3)) << scalar_name<T>();
+}
+
+TEST(Scalar, MaxNormPropagatesNaN) {
+  PrecisionGuard guard(40);
+  expect_nan_norm<double>();
+  expect_nan_norm<quad>();
+  expect_nan_norm<mpfr_real>();
+}
+
+}  // namespace
+}  // namespace vivv

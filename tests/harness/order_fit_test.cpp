@@ -518,3 +518,24 @@ TEST(OrderFitMpfr, ErrorsBelowTheRangeOfLongDoubleStillFit) {
 
 }  // namespace
 }  // namespace vivv
+
+#include "harness/series.hpp"
+
+namespace vivv {
+namespace {
+
+// A series whose measured value is not finite at some h is refused (std::domain_error, exit 2
+// in vivv run) instead of fitted: an infinite error once fitted into an order, a NaN one read as 0.
+TEST(SeriesOfErrors, RefusesANonFiniteError) {
+  const std::vector<double> h = {0.5, 0.25, 0.125};
+  const std::vector<double> finite = {0.25, 0.0625, 0.015625};
+  EXPECT_NO_THROW(make_series<double>("e", h, finite, 1e-14, 2.0, false, 0.2));
+  for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    std::vector<double> error = finite;
+    error[1] = bad;
+    EXPECT_THROW(make_series<double>("e", h, error, 1e-14, 2.0, false, 0.2), std::domain_error);
+  }
+}
+
+}  // namespace
+}  // namespace vivv
