@@ -644,6 +644,17 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
       throw CaseError(file, where, "modified-energy is derived for the midpoint and trapezoid rules without twin "
                                    "terms, not for discretization.kind \"" + spec.discretization.kind + "\"" +
                                    (spec.discretization.twin ? " with a twin term" : ""));
+    if (id == "precision-leak") {
+      if (spec.scalar != "mpfr")
+        throw CaseError(file, where, "precision-leak runs the case again at twice its digits: it needs \"scalar\": "
+                                     "\"mpfr\", not \"" + spec.scalar + "\"");
+      if (spec.digits > 1000)
+        throw CaseError(file, where, "precision-leak runs the case again at twice its digits, and digits " +
+                                         std::to_string(spec.digits) + " would make that more than 2000");
+      if (spec.past_discretization)
+        throw CaseError(file, where, "precision-leak measures the local defect of one consistent method, and "
+                                     "past_discretization makes a mismatched one");
+    }
     if (id == "qxq-tq-equivalence" && (!tq || spec.discretization.tq->lagrangian != "pullback"))
       throw CaseError(file, where, "qxq-tq-equivalence needs a TQ discretization with lagrangian \"pullback\"");
   }

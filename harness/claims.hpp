@@ -14,6 +14,7 @@
 #include "harness/claims/local_consistency.hpp"
 #include "harness/claims/modified_energy.hpp"
 #include "harness/claims/past_future_symmetry.hpp"
+#include "harness/claims/precision_leak.hpp"
 #include "harness/claims/symplecticity.hpp"
 #include "harness/claims/tq_claims.hpp"
 #include "harness/claims/twin_term.hpp"
@@ -25,7 +26,7 @@ using ClaimRegistry =
                MismatchedLegendreClaim, LocalOrderClaim, ContactOrderClaim, QxQTQEquivalenceClaim,
                ExistenceUniquenessClaim, ExactDiscretizationClaim, PastFutureSymmetryClaim,
                SymplecticityClaim, DiscreteNoetherClaim, EnergyBehaviourClaim,
-               ModifiedEnergyClaim>;
+               ModifiedEnergyClaim, PrecisionLeakClaim>;
 
 struct ClaimInfo {
   std::string id, source, prediction;
