@@ -13,6 +13,7 @@
 #include "core/discrete_lagrangian.hpp"
 #include "core/formula_system.hpp"
 #include "core/odeint_map.hpp"
+#include "core/user_map.hpp"
 
 namespace vivv {
 
@@ -285,17 +286,27 @@ DiscretizationSpec read_discretization(Reader reader, int dimension,
                                        const std::vector<std::pair<std::string, std::string>>& parameters,
                                        bool allow_tq = true) {
   DiscretizationSpec spec;
-  if (reader.has("kind") && reader.get("kind") == "odeint") {
-    // A one-step map of another library: no formalism, no twin term, nothing but its name.
+  if (reader.has("kind") && (reader.get("kind") == "odeint" || reader.get("kind") == "map")) {
+    // A one-step map of another library (odeint's, or one a program linking vivv registered):
+    // no formalism, no twin term, nothing but its name.
+    spec.kind = reader.get("kind").get<std::string>();
     if (!allow_tq) reader.fail("kind", "a one-step map cannot be pulled back as a Q×Q discrete Lagrangian");
     if (reader.has("formalism"))
-      reader.fail("formalism", "a one-step map (kind \"odeint\") is neither a Q×Q nor a TQ discretization: "
-                               "leave formalism out");
+      reader.fail("formalism", "a one-step map (kind \"" + spec.kind + "\") is neither a Q×Q nor a TQ "
+                               "discretization: leave formalism out");
     spec.formalism = "map";
-    spec.kind = "odeint";
     std::vector<std::string> names;
-    for (const auto& stepper : odeint_steppers()) names.push_back(stepper.name);
-    spec.stepper = reader.one_of("stepper", names);
+    if (spec.kind == "odeint") {
+      for (const auto& stepper : odeint_steppers()) names.push_back(stepper.name);
+      spec.stepper = reader.one_of("stepper", names);
+    } else {
+      for (const auto& map : registered_maps()) names.push_back(map.name);
+      if (names.empty())
+        reader.fail("kind", "\"map\" puts a method that a program linking vivv registered (vivv::register_map) "
+                            "under test, and this program registered none; the vivv tool has odeint's steppers "
+                            "(\"kind\": \"odeint\")");
+      spec.stepper = reader.one_of("name", names);
+    }
     if (reader.has("twin")) reader.fail("twin", "a one-step map has no discrete Lagrangian to add a twin term to");
     reader.finish();
     return spec;
@@ -602,8 +613,8 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
     if (id == "mismatched-legendre" && !spec.past_discretization)
       throw CaseError(file, where, "mismatched-legendre needs past_discretization");
     if (spec.discretization.formalism == "map" && !map_claim_ids().count(id))
-      throw CaseError(file, where, id + " is a claim about discrete Lagrangians, and discretization kind \"odeint\" "
-                                        "is a one-step map without one: a map takes " + join(std::vector<std::string>(
+      throw CaseError(file, where, id + " is a claim about discrete Lagrangians, and discretization kind \"" +
+                                        spec.discretization.kind + "\" is a one-step map without one: a map takes " + join(std::vector<std::string>(
                                             map_claim_ids().begin(), map_claim_ids().end())));
     bool tq = spec.discretization.formalism == "tq";
     if (!tq && tq_claim_ids().count(id))

@@ -15,6 +15,7 @@
 #include "core/euler_lagrange_tape.hpp"
 #include "core/formula_discretization.hpp"
 #include "core/odeint_map.hpp"
+#include "core/user_map.hpp"
 #include "core/state.hpp"
 #include "core/tq_evolution.hpp"
 #include "core/quadrature.hpp"
@@ -277,13 +278,21 @@ struct CaseContext {
   std::shared_ptr<const OneStepMap<T, n>> make_map() const {
     std::vector<State<T, n>> samples = {initial, final_state, {initial.q, final_state.w}, {final_state.q, initial.w}};
     if (auto defect = separability_defect(system, samples))
-      throw CaseError(spec.file, "discretization.stepper",
-                      "odeint's " + spec.discretization.stepper +
+      throw CaseError(spec.file, spec.discretization.kind == "odeint" ? "discretization.stepper" : "discretization.name",
+                      spec.discretization.kind + " " + spec.discretization.stepper +
                           " steps a separable system, L = 1/2 w^T M w - V(q) with M constant, and this "
                           "Lagrangian is not one: " + defect->quantity + " = " + format_scalar(defect->size) +
                           " at q = " + to_decimal<T>(defect->at.q[0]) + ", w = " + to_decimal<T>(defect->at.w[0]) +
                           (n > 1 ? " (first components)" : ""));
-    return make_odeint_map<T, n>(spec.discretization.stepper, separable_form(system, initial));
+    if (spec.discretization.kind == "odeint")
+      return make_odeint_map<T, n>(spec.discretization.stepper, separable_form(system, initial));
+    const auto& factories = map_factories<T, n>();
+    const auto factory = factories.find(spec.discretization.stepper);
+    if (factory == factories.end())
+      throw CaseError(spec.file, "discretization.name",
+                      "'" + spec.discretization.stepper + "' is not registered for " + scalar_name<T>() + " and " +
+                          std::to_string(n) + " coordinates");
+    return factory->second(separable_form(system, initial));
   }
 
   // h = T/N for every N of the sweep.

@@ -452,6 +452,8 @@ int command_list() {
   for (const auto& stepper : odeint_steppers())
     std::cout << "  " << stepper.name << " (order " << stepper.order << (stepper.symplectic ? ", symplectic" : ", not symplectic")
               << ")\n";
+  std::cout << "one-step maps of your own (\"kind\": \"map\", \"name\"): registered by a program that links vivv "
+               "(vivv::register_map, docs/library.md); none in this tool\n";
   std::cout << "claims:\n";
   for (const auto& claim : registered_claims())
     std::cout << "  " << claim.id << " [" << claim.source << "]: " << claim.prediction << "\n";

@@ -1,0 +1,51 @@
+// The user's test suite: vivv's claims on the user's own integrator, as GoogleTest assertions.
+#include <vivv/gtest.hpp>
+#include <vivv/vivv.hpp>
+
+#include "split_kick.hpp"
+
+namespace {
+
+const std::string cases = CASES_DIR;
+
+class SplitKickTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    vivv::register_map<SplitKick<TenthWeights>>("split-kick", 2);
+    vivv::register_map<SplitKick<TenthLiteralWeights>>("split-kick-literal", 2);
+  }
+};
+
+std::string verdict_of(const vivv::Run& run, const std::string& claim) {
+  for (const auto& result : run.results)
+    for (const auto& c : result.claims)
+      if (c.id == claim) return c.verdict;
+  return "missing";
+}
+
+// Weights computed in the scalar: order 2, symplectic, bounded energy, no precision leak.
+TEST_F(SplitKickTest, HoldsItsOrderAndStructureAndLeaksNoPrecision) {
+  const vivv::Run run = vivv::run({cases + "/split-kick-pendulum.json"});
+  EXPECT_TRUE(vivv::check(run));
+  EXPECT_EQ(verdict_of(run, "precision-leak"), "pass");
+  EXPECT_EQ(vivv::write_reports(run, "report-split-kick").size(), 3u);
+}
+
+// The double literal 0.1: order, symplecticity and energy still hold at the case's steps,
+// and precision-leak flags what the literal lost (the case marks it xfail, so check holds).
+TEST_F(SplitKickTest, ADoubleLiteralIsFlaggedAsAPrecisionLeak) {
+  const vivv::Run run = vivv::run({cases + "/split-kick-literal-pendulum.json"});
+  EXPECT_TRUE(vivv::check(run));
+  EXPECT_EQ(verdict_of(run, "global-order"), "pass");
+  EXPECT_EQ(verdict_of(run, "symplecticity"), "pass");
+  EXPECT_EQ(verdict_of(run, "precision-leak"), "xfail");
+  for (const auto& claim : run.results.front().claims)
+    if (claim.id == "precision-leak") EXPECT_NE(claim.explanation.find("bits"), std::string::npos) << claim.explanation;
+}
+
+// A case naming a map nobody registered is bad input.
+TEST_F(SplitKickTest, AnUnregisteredMapIsBadInput) {
+  EXPECT_THROW(vivv::run({cases + "/unregistered-map.json"}), vivv::CaseError);
+}
+
+}  // namespace
