@@ -37,6 +37,7 @@ CaseError::CaseError(const std::string& file, const std::string& field, const st
 std::vector<std::string> system_names() {
   std::vector<std::string> names;
   for (const auto& info : system_catalogue()) names.push_back(info.name);
+  for (const auto& registered : registered_systems()) names.push_back(registered.name);
   return names;
 }
 
@@ -334,6 +335,19 @@ DiscretizationSpec read_discretization(Reader reader, int dimension,
                            "back through psi's derivatives; use it on Q × Q");
     }
     spec.tq = tq;
+  } else if (reader.has("kind") && reader.get("kind") == "user") {
+    // L_d registered as C++ code by a program linking vivv: run as an "expression" L_d.
+    std::vector<std::string> names;
+    for (const auto& rule : registered_discrete_lagrangians()) names.push_back(rule.name);
+    if (names.empty())
+      reader.fail("kind", "\"user\" puts a discrete Lagrangian that a program linking vivv registered "
+                          "(vivv::register_discrete_lagrangian) under test, and this program registered none; "
+                          "write L_d as a formula instead (\"kind\": \"expression\")");
+    const std::string name = reader.one_of("name", names);
+    for (const auto& rule : registered_discrete_lagrangians())
+      if (rule.name == name) spec.recorded = rule.recorder, spec.declared_order = rule.order;
+    spec.kind = "expression";
+    spec.expression = "registered C++ discrete Lagrangian '" + name + "'";
   } else {
     spec.kind = reader.one_of("kind", rule_names());
     QxQRule rule = *rule_from_name(spec.kind);
@@ -464,6 +478,14 @@ void read_formula_system(Reader& system, CaseSpec& spec) {
   spec.formula = std::move(definition);
 }
 
+// The system registered under the name "system.name" gives, if one is.
+const RegisteredSystem* registered_system(Reader& system) {
+  if (!system.has("name") || !system.get("name").is_string()) return nullptr;
+  for (const auto& registered : registered_systems())
+    if (registered.name == system.get("name").get<std::string>()) return &registered;
+  return nullptr;
+}
+
 // d²L/dw² of `system` at (q, w), or a CaseError naming the field when it is singular there.
 template <class System>
 void check_regular(const System& system, const CaseSpec& spec, const std::string& file) {
@@ -494,7 +516,7 @@ void check_initial_state(const CaseSpec& spec, const std::string& file) {
   for (int i = 0; i < spec.dimension; ++i) q.push_back(from_decimal<T>(spec.q[i])), w.push_back(from_decimal<T>(spec.w[i]));
   if (spec.formula) {
     try {
-      check_formula_domain<T>(*spec.formula, q, w);
+      if (!spec.formula->recorded) check_formula_domain<T>(*spec.formula, q, w);
     } catch (const FormulaError& error) {
       throw CaseError(file, "system.lagrangian", describe_formula_error(spec.formula->text, error));
     }
@@ -527,6 +549,27 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   Reader system = reader.object("system");
   if (system.has("lagrangian")) {
     read_formula_system(system, spec);
+  } else if (const RegisteredSystem* registered = registered_system(system); registered) {
+    // A system registered as C++ code by a program linking vivv: run as a formula system.
+    spec.system = registered->name;
+    spec.dimension = registered->dimension;
+    std::map<std::string, std::string> given;
+    if (system.has("params")) {
+      Reader params = system.object("params");
+      for (const auto& [name, value] : registered->parameters)
+        if (params.has(name)) given[name] = params.decimal(name);
+      params.finish();
+    }
+    auto definition = std::make_shared<FormulaSystemDefinition>();
+    definition->name = registered->name;
+    definition->text = "registered C++ system '" + registered->name + "'";
+    definition->recorded = registered->recorder;
+    for (int i = 1; i <= registered->dimension; ++i)
+      definition->coordinates.push_back("q" + std::to_string(i)), definition->velocities.push_back("w" + std::to_string(i));
+    for (const auto& [name, value] : registered->parameters)
+      spec.parameters.emplace_back(name, given.count(name) ? given[name] : value);
+    definition->parameters = spec.parameters;
+    spec.formula = std::move(definition);
   } else {
     spec.system = system.one_of("name", system_names());
     SystemInfo info;

@@ -59,6 +59,8 @@ struct DiscretizationSpec {
   // the order its author claims for it.
   std::string expression;
   std::shared_ptr<const FormulaNode> expression_tree;
+  // kind "user" (read as an "expression"): L_d registered as C++ code instead of a formula.
+  std::shared_ptr<const PerScalar<DiscreteLagrangianRecorder>> recorded;
   int declared_order = 0;
   // kind "galerkin": degree s of the curve, "gauss" or "lobatto", and the number of nodes.
   int galerkin_degree = 0, galerkin_nodes = 0;

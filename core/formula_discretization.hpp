@@ -50,6 +50,26 @@ std::shared_ptr<const Tape<typename System::Scalar>> record_discrete_lagrangian(
   return std::make_shared<const Tape<T>>(recording.finish({value.components[0]}));
 }
 
+// L_d(qb, qe; h) of C++ code registered for it (core/recorded.hpp), recorded in T over the
+// inputs (qb_1 … qb_n, qe_1 … qe_n, h) with the system's L inlined.
+template <LagrangianSystem System>
+std::shared_ptr<const Tape<typename System::Scalar>> record_discrete_lagrangian(
+    const System& system, const PerScalar<DiscreteLagrangianRecorder>& recorder) {
+  using T = typename System::Scalar;
+  using V = TapeScalar<T>;
+  constexpr int n = System::dimension;
+  TapeRecording<T> recording(2 * n + 1);
+  std::vector<V> qb, qe;
+  for (int i = 0; i < n; ++i) qb.push_back(recording.input(i)), qe.push_back(recording.input(n + i));
+  auto lagrangian = [&system](const std::vector<V>& x, const std::vector<V>& v) {
+    Point<V, n> point, velocity;
+    for (int i = 0; i < n; ++i) point[i] = x[i], velocity[i] = v[i];
+    return V(system.lagrangian(point, velocity));
+  };
+  const V value = recorder.template get<T>()(qb, qe, recording.input(2 * n), lagrangian);
+  return std::make_shared<const Tape<T>>(recording.finish({value}));
+}
+
 // The expression discretization of `text` (its tree `tree`) for `system`, claiming `order`.
 template <LagrangianSystem System>
 QxQDiscretization<typename System::Scalar> expression_discretization(
@@ -58,6 +78,18 @@ QxQDiscretization<typename System::Scalar> expression_discretization(
   QxQDiscretization<typename System::Scalar> d;
   d.rule = QxQRule::expression;
   d.expression = record_discrete_lagrangian(system, tree, parameters);
+  d.formula = text;
+  d.declared_order = order;
+  return d;
+}
+
+// The discretization of an L_d registered as C++ code, claiming `order`.
+template <LagrangianSystem System>
+QxQDiscretization<typename System::Scalar> recorded_discretization(
+    const System& system, const std::string& text, const PerScalar<DiscreteLagrangianRecorder>& recorder, int order) {
+  QxQDiscretization<typename System::Scalar> d;
+  d.rule = QxQRule::expression;
+  d.expression = record_discrete_lagrangian(system, recorder);
   d.formula = text;
   d.declared_order = order;
   return d;

@@ -17,6 +17,7 @@
 
 #include "core/formula.hpp"
 #include "core/lagrangian.hpp"
+#include "core/recorded.hpp"
 #include "core/tape.hpp"
 
 namespace vivv {
@@ -31,6 +32,9 @@ struct FormulaSystemDefinition {
   // The generator ξ(q) of a symmetry of L, a formula per coordinate in the
   // coordinates and parameters (core/noether.hpp); empty: none declared.
   std::vector<FormulaNode> symmetry;
+  // A system registered as C++ code (core/recorded.hpp): L is recorded from it, not from
+  // `lagrangian`, which is then empty.
+  std::shared_ptr<const PerScalar<SystemRecorder>> recorded;
 };
 
 template <class T, int n>
@@ -78,9 +82,14 @@ FormulaSystem<T, n> make_formula_system(const FormulaSystemDefinition& definitio
   TapeRecording<T> recording(2 * n);
   std::vector<TapeScalar<T>> q, w;
   for (int i = 0; i < n; ++i) q.push_back(recording.input(i)), w.push_back(recording.input(n + i));
+  FormulaSystem<T, n> system;
+  if (definition.recorded) {
+    const TapeScalar<T> value = definition.recorded->template get<T>()(q, w, definition.parameters);
+    system.program = std::make_shared<const Tape<T>>(recording.finish({value}));
+    return system;
+  }
   const auto scope = system_formula_scope<T>(definition, q, w);
   const FormulaValue<TapeScalar<T>> value = interpret(definition.lagrangian, scope);
-  FormulaSystem<T, n> system;
   system.program = std::make_shared<const Tape<T>>(recording.finish({value.components[0]}));
   if (!definition.symmetry.empty()) {
     TapeRecording<T> generator(n);

@@ -16,49 +16,18 @@
 namespace vivv {
 
 template <class T, int n>
-class OdeintMap final : public OneStepMap<T, n> {
+class OdeintMap final : public SeparableMap<OdeintMap<T, n>, T, n> {
+  using Base = SeparableMap<OdeintMap<T, n>, T, n>;
+  friend Base;
+
  public:
-  OdeintMap(OdeintStepperInfo info, SeparableSystem<T, n> system) : info_(std::move(info)), system_(std::move(system)) {}
+  OdeintMap(OdeintStepperInfo info, SeparableSystem<T, n> system) : Base(std::move(system)), info_(std::move(info)) {}
 
   std::string name() const override { return "odeint " + info_.name; }
   int order() const override { return info_.order; }
 
-  State<T, n> step(const State<T, n>& x, const T& h) const override {
-    std::array<T, n> q, w;
-    for (int i = 0; i < n; ++i) q[i] = x.q[i], w[i] = x.w[i];
-    advance(q, w, h, system_.force);
-    State<T, n> next;
-    for (int i = 0; i < n; ++i) next.q[i] = q[i], next.w[i] = w[i];
-    return next;
-  }
-
-  // The step run in jets with (q, p) as the 2n variables, w = M⁻¹ p; rows of the result are
-  // the gradients of q' and of p' = M w'.
-  Matrix<T, 2 * n, 2 * n> jacobian(const State<T, n>& x, const T& h) const override {
-    using J = PhaseJet<T, n>;
-    const Vector<T, n> p = system_.mass * x.w;
-    std::array<J, n> q, w, momentum;
-    for (int i = 0; i < n; ++i) q[i] = J::variable(x.q[i], i), momentum[i] = J::variable(p[i], n + i);
-    w = times(system_.inverse_mass, momentum);
-    advance(q, w, J(h), system_.force_jet);
-    const std::array<J, n> p_next = times(system_.mass, w);
-    Matrix<T, 2 * n, 2 * n> jacobian;
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < 2 * n; ++j) jacobian(i, j) = q[i].gradient[j], jacobian(n + i, j) = p_next[i].gradient[j];
-    return jacobian;
-  }
-
  private:
-  // A·v for a matrix in T and a vector in S.
-  template <class S>
-  static std::array<S, n> times(const Matrix<T, n, n>& a, const std::array<S, n>& v) {
-    std::array<S, n> r;
-    for (int i = 0; i < n; ++i) {
-      r[i] = S(0);
-      for (int j = 0; j < n; ++j) r[i] += S(a(i, j)) * v[j];
-    }
-    return r;
-  }
+  using Base::times;
 
   // One step of the stepper on (q, w) in scalar S, with force F in S.
   template <class S, class Force>
@@ -67,9 +36,9 @@ class OdeintMap final : public OneStepMap<T, n> {
     using Coordinates = std::array<S, n>;
     // q'' = M⁻¹ F(q), and its first-order forms.
     auto acceleration = [&](const Coordinates& x, const Coordinates&, Coordinates& a, const S&) {
-      a = times(system_.inverse_mass, force(x));
+      a = times(this->system().inverse_mass, force(x));
     };
-    auto coordinate_rate = [&](const Coordinates& momentum, Coordinates& dq) { dq = times(system_.inverse_mass, momentum); };
+    auto coordinate_rate = [&](const Coordinates& momentum, Coordinates& dq) { dq = times(this->system().inverse_mass, momentum); };
     auto momentum_rate = [&](const Coordinates& x, Coordinates& dp) { dp = force(x); };
     const std::string& name = info_.name;
     if (name == "velocity_verlet") {
@@ -78,19 +47,19 @@ class OdeintMap final : public OneStepMap<T, n> {
       stepper.do_step(acceleration, state, S(0), h);
       q = state.first, w = state.second;
     } else if (name == "symplectic_rkn_sb3a_mclachlan" || name == "symplectic_rkn_sb3a_m4_mclachlan") {
-      std::pair<Coordinates, Coordinates> state(q, times(system_.mass, w));
+      std::pair<Coordinates, Coordinates> state(q, times(this->system().mass, w));
       auto rates = std::make_pair(coordinate_rate, momentum_rate);
       if (name == "symplectic_rkn_sb3a_mclachlan")
         odeint::symplectic_rkn_sb3a_mclachlan<Coordinates, Coordinates, S>().do_step(rates, state, S(0), h);
       else
         odeint::symplectic_rkn_sb3a_m4_mclachlan<Coordinates, Coordinates, S>().do_step(rates, state, S(0), h);
-      q = state.first, w = times(system_.inverse_mass, state.second);
+      q = state.first, w = times(this->system().inverse_mass, state.second);
     } else if (name == "runge_kutta4") {
       using Phase = std::array<S, 2 * n>;
       auto rate = [&](const Phase& y, Phase& dy, const S&) {
         Coordinates x, a;
         for (int i = 0; i < n; ++i) x[i] = y[i], dy[i] = y[n + i];
-        a = times(system_.inverse_mass, force(x));
+        a = times(this->system().inverse_mass, force(x));
         for (int i = 0; i < n; ++i) dy[n + i] = a[i];
       };
       Phase y;
@@ -103,7 +72,6 @@ class OdeintMap final : public OneStepMap<T, n> {
   }
 
   OdeintStepperInfo info_;
-  SeparableSystem<T, n> system_;
 };
 
 template <class T, int n>

@@ -18,6 +18,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/jet.hpp"
@@ -47,6 +48,58 @@ struct SeparableSystem {
   Matrix<T, n, n> mass, inverse_mass;
   std::function<std::array<T, n>(const std::array<T, n>&)> force;
   std::function<std::array<PhaseJet<T, n>, n>(const std::array<PhaseJet<T, n>, n>&)> force_jet;
+};
+
+// A one-step map on a separable system given by Derived::advance(q, w, h, force) in any scalar
+// S (advancing (q, w) in place, the force F(q) in S): the step in T, and the Jacobian on (q, p)
+// by running the same code in first-order jets over (q, p), w = M⁻¹ p. Odeint's steppers and
+// the maps a program registers (core/odeint_map.hpp, core/user_map.hpp) are such maps.
+template <class Derived, class T, int n>
+class SeparableMap : public OneStepMap<T, n> {
+ public:
+  explicit SeparableMap(SeparableSystem<T, n> system) : system_(std::move(system)) {}
+
+  State<T, n> step(const State<T, n>& x, const T& h) const override {
+    std::array<T, n> q, w;
+    for (int i = 0; i < n; ++i) q[i] = x.q[i], w[i] = x.w[i];
+    derived().advance(q, w, h, system_.force);
+    State<T, n> next;
+    for (int i = 0; i < n; ++i) next.q[i] = q[i], next.w[i] = w[i];
+    return next;
+  }
+
+  // Rows of the result: the gradients of q' and of p' = M w' over (q, p).
+  Matrix<T, 2 * n, 2 * n> jacobian(const State<T, n>& x, const T& h) const override {
+    using J = PhaseJet<T, n>;
+    const Vector<T, n> p = system_.mass * x.w;
+    std::array<J, n> q, momentum;
+    for (int i = 0; i < n; ++i) q[i] = J::variable(x.q[i], i), momentum[i] = J::variable(p[i], n + i);
+    std::array<J, n> w = times(system_.inverse_mass, momentum);
+    derived().advance(q, w, J(h), system_.force_jet);
+    const std::array<J, n> p_next = times(system_.mass, w);
+    Matrix<T, 2 * n, 2 * n> jacobian;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < 2 * n; ++j) jacobian(i, j) = q[i].gradient[j], jacobian(n + i, j) = p_next[i].gradient[j];
+    return jacobian;
+  }
+
+ protected:
+  const SeparableSystem<T, n>& system() const { return system_; }
+
+  // A·v for a matrix in T and a vector in S.
+  template <class S>
+  static std::array<S, n> times(const Matrix<T, n, n>& a, const std::array<S, n>& v) {
+    std::array<S, n> r;
+    for (int i = 0; i < n; ++i) {
+      r[i] = S(0);
+      for (int j = 0; j < n; ++j) r[i] += S(a(i, j)) * v[j];
+    }
+    return r;
+  }
+
+ private:
+  const Derived& derived() const { return static_cast<const Derived&>(*this); }
+  SeparableSystem<T, n> system_;
 };
 
 // F(q) = ∂L/∂q(q, 0) in scalar S (T or a jet over it), by one more first-order jet.

@@ -46,61 +46,27 @@ std::map<std::string, MapFactory<T, n>>& map_factories() {
 }
 
 template <class Method, class T, int n>
-class UserMap final : public OneStepMap<T, n> {
+class UserMap final : public SeparableMap<UserMap<Method, T, n>, T, n> {
+  using Base = SeparableMap<UserMap<Method, T, n>, T, n>;
+  friend Base;
+
  public:
   UserMap(RegisteredMap info, Method method, SeparableSystem<T, n> system)
-      : info_(std::move(info)), method_(std::move(method)), system_(std::move(system)) {}
+      : Base(std::move(system)), info_(std::move(info)), method_(std::move(method)) {}
 
   std::string name() const override { return info_.name; }
   int order() const override { return info_.order; }
 
-  State<T, n> step(const State<T, n>& x, const T& h) const override {
-    std::array<T, n> q, w;
-    for (int i = 0; i < n; ++i) q[i] = x.q[i], w[i] = x.w[i];
-    advance(q, w, h, system_.force);
-    State<T, n> next;
-    for (int i = 0; i < n; ++i) next.q[i] = q[i], next.w[i] = w[i];
-    return next;
-  }
-
-  // The step run in jets with (q, p) as the 2n variables, w = M⁻¹ p; rows of the result are
-  // the gradients of q' and of p' = M w'.
-  Matrix<T, 2 * n, 2 * n> jacobian(const State<T, n>& x, const T& h) const override {
-    using J = PhaseJet<T, n>;
-    const Vector<T, n> p = system_.mass * x.w;
-    std::array<J, n> q, momentum;
-    for (int i = 0; i < n; ++i) q[i] = J::variable(x.q[i], i), momentum[i] = J::variable(p[i], n + i);
-    std::array<J, n> w = times(system_.inverse_mass, momentum);
-    advance(q, w, J(h), system_.force_jet);
-    const std::array<J, n> p_next = times(system_.mass, w);
-    Matrix<T, 2 * n, 2 * n> jacobian;
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < 2 * n; ++j) jacobian(i, j) = q[i].gradient[j], jacobian(n + i, j) = p_next[i].gradient[j];
-    return jacobian;
-  }
-
  private:
-  // A·v for a matrix in T and a vector in S.
-  template <class S>
-  static std::array<S, n> times(const Matrix<T, n, n>& a, const std::array<S, n>& v) {
-    std::array<S, n> r;
-    for (int i = 0; i < n; ++i) {
-      r[i] = S(0);
-      for (int j = 0; j < n; ++j) r[i] += S(a(i, j)) * v[j];
-    }
-    return r;
-  }
-
   // The user's step in scalar S, with q'' = M⁻¹ F(q) from the force in S.
   template <class S, class Force>
   void advance(std::array<S, n>& q, std::array<S, n>& w, const S& h, const Force& force) const {
-    auto acceleration = [&](const std::array<S, n>& at) { return times(system_.inverse_mass, force(at)); };
+    auto acceleration = [&](const std::array<S, n>& at) { return Base::times(this->system().inverse_mass, force(at)); };
     method_.step(q, w, h, acceleration);
   }
 
   RegisteredMap info_;
   Method method_;
-  SeparableSystem<T, n> system_;
 };
 
 }  // namespace vivv

@@ -60,7 +60,9 @@ QxQDiscretization<typename System::Scalar> make_discretization(
   using T = typename System::Scalar;
   if (spec.formalism != "qxq" || spec.kind != "expression") return make_discretization<T>(spec);
   QxQDiscretization<T> d =
-      expression_discretization(system, spec.expression, *spec.expression_tree, parameters, spec.declared_order);
+      spec.recorded
+          ? recorded_discretization(system, spec.expression, *spec.recorded, spec.declared_order)
+          : expression_discretization(system, spec.expression, *spec.expression_tree, parameters, spec.declared_order);
   d.twin = make_twin<T>(spec.twin);
   return d;
 }

@@ -59,7 +59,9 @@ void run_in_scalar(CaseSpec& spec, CaseResult& result, bool refine,
     formula = std::make_shared<const FormulaSystemDefinition>(catalogue_twin(spec.system, spec.parameters));
     result.implementation = "formula twin of the catalogue system (compiled catalogue systems run in mpfr)";
   } else {
-    result.implementation = formula ? "formula" : "compiled catalogue system";
+    result.implementation = !formula            ? "compiled catalogue system"
+                            : formula->recorded ? "registered C++ system, recorded on a tape"
+                                                : "formula";
   }
   if (formula) {
     result.formula = formula->text;

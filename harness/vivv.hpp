@@ -3,7 +3,8 @@
 //
 // A case is what `vivv run` reads: a JSON case file (docs/case-files.md) naming the system,
 // the initial state, T, the step counts, the scalar and the claims. What the library adds is
-// a method of your own under test: a one-step map, written once for any scalar S,
+// code of your own under test, written once for any scalar S: a system (register_system), a
+// Q×Q discrete Lagrangian (register_discrete_lagrangian) or a one-step map,
 //
 //   struct MyMethod {
 //     // Advances (q, w) by h in place; a(q) = M⁻¹ F(q) = q'' as std::array<S, n>.
@@ -26,12 +27,16 @@
 // throws vivv::CaseError naming the file and the field, as `vivv run` exits 2 on it.
 #pragma once
 
+#include <array>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "cases/case_file.hpp"
 #include "core/odeint_map.hpp"
+#include "core/recorded.hpp"
 #include "core/user_map.hpp"
 #include "harness/run_case.hpp"
 #include "reports/report.hpp"
@@ -43,6 +48,32 @@ namespace vivv {
 // and float128 for 1 and 2. A name registered twice, or one of odeint's, is refused.
 template <class Method>
 void register_map(const std::string& name, int order, Method method = {});
+
+// Registers a Lagrangian system written as C++ code, for any scalar S:
+//   struct MySystem {
+//     static constexpr int dimension = 1;                 // 1 to 4 (1 or 2 outside MPFR)
+//     static std::vector<std::pair<std::string, std::string>> parameters();  // name, default
+//     template <class S, class Parameter>                 // parameter("k") is k in S
+//     S lagrangian(const std::array<S, dimension>& q, const std::array<S, dimension>& w,
+//                  const Parameter& parameter) const;
+//   };
+// A case names it {"name": name, "params": {...}} under "system". vivv records L on a tape in
+// the case's scalar (core/recorded.hpp): +, −, ×, ÷, sin, cos, exp, log, sqrt and pow by a
+// constant are recorded; a branch on a value is taken once, where the recording runs.
+template <class System>
+void register_system(const std::string& name, System system = {});
+
+// Registers a Q×Q discrete Lagrangian written as C++ code, with the order r its authors state
+// (L_d = L_d^E + O(h^{r+1})), for any scalar S and any dimension n:
+//   struct MyRule {
+//     template <class S, std::size_t n, class Lagrangian>  // lagrangian(x, v): the system's L
+//     S discrete_lagrangian(const std::array<S, n>& qb, const std::array<S, n>& qe, const S& h,
+//                           const Lagrangian& lagrangian) const;
+//   };
+// A case names it {"kind": "user", "name": name} as its discretization; it takes every Q×Q
+// claim an "expression" L_d takes, recorded on a tape as for register_system.
+template <class Rule>
+void register_discrete_lagrangian(const std::string& name, int order, Rule rule = {});
 
 // The cases of one run and its report (schema reports/schema.json).
 struct Run {
@@ -88,6 +119,84 @@ void register_map(const std::string& name, int order, Method method) {
   add.template operator()<quad, 1>();
   add.template operator()<quad, 2>();
   registered_maps().push_back(info);
+}
+
+namespace detail {
+
+// A name not yet taken by a catalogue system, a registered one or a map.
+inline void check_new_name(const std::string& what, const std::string& name, const std::vector<std::string>& taken) {
+  if (name.empty()) throw std::invalid_argument(what + ": an empty name");
+  for (const auto& other : taken)
+    if (other == name) throw std::invalid_argument(what + ": '" + name + "' is already taken");
+}
+
+// One recorder for each scalar, from make.template operator()<T>().
+template <template <class> class F, class Make>
+std::shared_ptr<const PerScalar<F>> per_scalar(const Make& make) {
+  auto functions = std::make_shared<PerScalar<F>>();
+  functions->in_double = make.template operator()<double>();
+  functions->in_long_double = make.template operator()<long double>();
+  functions->in_quad = make.template operator()<quad>();
+  functions->in_mpfr = make.template operator()<mpfr_real>();
+  return functions;
+}
+
+template <int n, class V>
+std::array<V, n> as_array(const std::vector<V>& x) {
+  std::array<V, n> a;
+  for (int i = 0; i < n; ++i) a[i] = x[i];
+  return a;
+}
+
+// The user's rule in dimension n on the recorded inputs.
+template <int n, class Rule, class V, class Lagrangian>
+V record_rule(const Rule& rule, const std::vector<V>& qb, const std::vector<V>& qe, const V& h,
+              const Lagrangian& lagrangian) {
+  auto lagrangian_n = [&](const std::array<V, n>& x, const std::array<V, n>& v) {
+    return lagrangian(std::vector<V>(x.begin(), x.end()), std::vector<V>(v.begin(), v.end()));
+  };
+  return V(rule.discrete_lagrangian(as_array<n>(qb), as_array<n>(qe), h, lagrangian_n));
+}
+
+}  // namespace detail
+
+template <class System>
+void register_system(const std::string& name, System system) {
+  constexpr int n = System::dimension;
+  static_assert(n >= 1 && n <= 4, "vivv runs systems of 1 to 4 coordinates");
+  detail::check_new_name("register_system", name, system_names());
+  auto recorder = detail::per_scalar<SystemRecorder>([&]<class T>() -> SystemRecorder<T> {
+    return [system](const TapeVector<T>& q, const TapeVector<T>& w,
+                    const std::vector<std::pair<std::string, std::string>>& parameters) {
+      auto parameter = [&](const std::string& key) {
+        for (const auto& [parameter_name, value] : parameters)
+          if (parameter_name == key) return TapeScalar<T>(from_decimal<T>(value));
+        throw std::invalid_argument("the system asks for a parameter '" + key + "' it does not declare");
+      };
+      return TapeScalar<T>(system.lagrangian(detail::as_array<n>(q), detail::as_array<n>(w), parameter));
+    };
+  });
+  registered_systems().push_back({name, n, System::parameters(), recorder});
+}
+
+template <class Rule>
+void register_discrete_lagrangian(const std::string& name, int order, Rule rule) {
+  std::vector<std::string> taken;
+  for (const auto& registered : registered_discrete_lagrangians()) taken.push_back(registered.name);
+  detail::check_new_name("register_discrete_lagrangian", name, taken);
+  if (order < 1) throw std::invalid_argument("register_discrete_lagrangian: '" + name + "' needs an order of at least 1");
+  auto recorder = detail::per_scalar<DiscreteLagrangianRecorder>([&]<class T>() -> DiscreteLagrangianRecorder<T> {
+    return [rule](const TapeVector<T>& qb, const TapeVector<T>& qe, const TapeScalar<T>& h,
+                  const std::function<TapeScalar<T>(const TapeVector<T>&, const TapeVector<T>&)>& lagrangian) {
+      switch (qb.size()) {
+        case 1: return detail::record_rule<1>(rule, qb, qe, h, lagrangian);
+        case 2: return detail::record_rule<2>(rule, qb, qe, h, lagrangian);
+        case 3: return detail::record_rule<3>(rule, qb, qe, h, lagrangian);
+        default: return detail::record_rule<4>(rule, qb, qe, h, lagrangian);
+      }
+    };
+  });
+  registered_discrete_lagrangians().push_back({name, order, recorder});
 }
 
 }  // namespace vivv

@@ -2,6 +2,7 @@
 #include <vivv/gtest.hpp>
 #include <vivv/vivv.hpp>
 
+#include "quartic.hpp"
 #include "split_kick.hpp"
 
 namespace {
@@ -13,6 +14,8 @@ class SplitKickTest : public ::testing::Test {
   static void SetUpTestSuite() {
     vivv::register_map<SplitKick<TenthWeights>>("split-kick", 2);
     vivv::register_map<SplitKick<TenthLiteralWeights>>("split-kick-literal", 2);
+    vivv::register_system<QuarticOscillator>("quartic-oscillator");
+    vivv::register_discrete_lagrangian<GaussTwoLine>("gauss-two-line", 2);
   }
 };
 
@@ -39,8 +42,22 @@ TEST_F(SplitKickTest, ADoubleLiteralIsFlaggedAsAPrecisionLeak) {
   EXPECT_EQ(verdict_of(run, "global-order"), "pass");
   EXPECT_EQ(verdict_of(run, "symplecticity"), "pass");
   EXPECT_EQ(verdict_of(run, "precision-leak"), "xfail");
+  EXPECT_EQ(vivv::write_reports(run, "report-split-kick-literal").size(), 3u);
   for (const auto& claim : run.results.front().claims)
     if (claim.id == "precision-leak") EXPECT_NE(claim.explanation.find("bits"), std::string::npos) << claim.explanation;
+}
+
+// The user's own system and discrete Lagrangian: every Q×Q claim holds in MPFR, order and
+// symplecticity in float128; the user's map runs on the user's system in double.
+TEST_F(SplitKickTest, AUserRuleOnAUserSystemKeepsItsPromises) {
+  const vivv::Run run = vivv::run({cases + "/gauss-two-line-quartic.json", cases + "/gauss-two-line-quartic-float128.json",
+                                   cases + "/split-kick-quartic-double.json"});
+  EXPECT_TRUE(vivv::check(run));
+  ASSERT_EQ(run.results.size(), 3u);
+  EXPECT_EQ(run.results[0].claims.size(), 5u);
+  EXPECT_EQ(run.results[1].scalar, "float128");
+  EXPECT_EQ(run.results[2].scalar, "double");
+  EXPECT_EQ(vivv::write_reports(run, "report-user-types").size(), 3u);
 }
 
 // A case naming a map nobody registered is bad input.
