@@ -66,6 +66,9 @@ struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {
   // reaches (a factor 10^margin in h), so that both minima lie inside it.
   static constexpr int points_per_decade = 2;
   static constexpr int margin_decades = 2;
+  // A lower-order term whose coefficient is larger than 2^-20 is not rounding of any working
+  // precision: the explanation then names the method's order instead of a leak.
+  static constexpr double minimum_leak_bits = 20;
 
   template <LagrangianSystem System>
   static ClaimResult evaluate(const CaseContext<System>& context) {
@@ -125,13 +128,17 @@ struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {
         claim.evidence["leak_bits"] = format_scalar(bits, 4);
         claim.verdict = "fail";
         claim.explanation =
-            "precision leak: " + floors + "; " +
+            std::string(bits >= minimum_leak_bits ? "precision leak: " : "order, not precision: ") + floors + "; " +
             (kept.holds ? std::string("the floor did not fall")
                         : "from h = " + kept.from_h + " down the defect follows order " + format_scalar(kept.leak_order, 3) +
                               " instead of " + std::to_string(r)) +
             ": a term of size " + power_of_ten(log10_delta) + "·h^" + std::to_string(k) +
-            " that more digits do not remove, as if some quantity carried only about " + format_scalar(bits, 3) +
-            " bits (a double has 53)";
+            " that more digits do not remove, " +
+            (bits >= minimum_leak_bits
+                 ? "as if some quantity carried only about " + format_scalar(bits, 3) + " bits (a double has 53)"
+                 : "too large for a lost precision (about " + format_scalar(bits, 3) +
+                       " bits): the method's own error is of order " + std::to_string(k) + ", not " +
+                       std::to_string(r) + " (global-order should fail too)");
       }
     }
     return claim;
