@@ -478,6 +478,19 @@ void read_formula_system(Reader& system, CaseSpec& spec) {
   spec.formula = std::move(definition);
 }
 
+// "system.params": a decimal for each declared parameter (name, default), the default where the
+// case gives none; a parameter that is not declared is an error (params.finish).
+std::vector<std::pair<std::string, std::string>> read_parameters(
+    Reader& system, const std::vector<std::pair<std::string, std::string>>& declared) {
+  std::vector<std::pair<std::string, std::string>> values = declared;
+  if (!system.has("params")) return values;
+  Reader params = system.object("params");
+  for (auto& [name, value] : values)
+    if (params.has(name)) value = params.decimal(name);
+  params.finish();
+  return values;
+}
+
 // The system registered under the name "system.name" gives, if one is.
 const RegisteredSystem* registered_system(Reader& system) {
   if (!system.has("name") || !system.get("name").is_string()) return nullptr;
@@ -553,21 +566,13 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
     // A system registered as C++ code by a program linking vivv: run as a formula system.
     spec.system = registered->name;
     spec.dimension = registered->dimension;
-    std::map<std::string, std::string> given;
-    if (system.has("params")) {
-      Reader params = system.object("params");
-      for (const auto& [name, value] : registered->parameters)
-        if (params.has(name)) given[name] = params.decimal(name);
-      params.finish();
-    }
+    spec.parameters = read_parameters(system, registered->parameters);
     auto definition = std::make_shared<FormulaSystemDefinition>();
     definition->name = registered->name;
     definition->text = "registered C++ system '" + registered->name + "'";
     definition->recorded = registered->recorder;
     for (int i = 1; i <= registered->dimension; ++i)
       definition->coordinates.push_back("q" + std::to_string(i)), definition->velocities.push_back("w" + std::to_string(i));
-    for (const auto& [name, value] : registered->parameters)
-      spec.parameters.emplace_back(name, given.count(name) ? given[name] : value);
     definition->parameters = spec.parameters;
     spec.formula = std::move(definition);
   } else {
@@ -576,17 +581,9 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
     for (const auto& candidate : system_catalogue())
       if (candidate.name == spec.system) info = candidate;
     spec.dimension = info.dimension;
-    std::map<std::string, std::string> given;
-    if (system.has("params")) {
-      Reader params = system.object("params");
-      for (const auto& parameter : info.parameters)
-        if (params.has(parameter.name)) given[parameter.name] = params.decimal(parameter.name);
-      params.finish();
-    }
-    for (const auto& parameter : info.parameters)
-      spec.parameters.emplace_back(parameter.name, given.count(parameter.name)
-                                                       ? given[parameter.name]
-                                                       : parameter.default_value);
+    std::vector<std::pair<std::string, std::string>> declared;
+    for (const auto& parameter : info.parameters) declared.emplace_back(parameter.name, parameter.default_value);
+    spec.parameters = read_parameters(system, declared);
   }
   system.finish();
 

@@ -23,8 +23,11 @@
 //   vivv::write_reports(run, "vivv-report");                    // report.json, .html, junit.xml
 //   EXPECT_TRUE(vivv::check(run)) ;                             // with <vivv/gtest.hpp>
 //
-// Bad input (a malformed case, a name nobody registered, a non-separable Lagrangian for a map)
-// throws vivv::CaseError naming the file and the field, as `vivv run` exits 2 on it.
+// Bad input throws, where `vivv run` exits 2: a malformed case, a name nobody registered or a
+// non-separable Lagrangian for a map as vivv::CaseError (naming the file and the field); a step
+// too large for the solver as vivv::SolverError; a state where L is not regular as
+// vivv::SingularLagrangianError; a computation that leaves the finite numbers as
+// std::domain_error.
 #pragma once
 
 #include <array>
@@ -95,31 +98,6 @@ std::string failures(const Run& run);
 
 // ---- definitions ----
 
-template <class Method>
-void register_map(const std::string& name, int order, Method method) {
-  for (const auto& registered : registered_maps())
-    if (registered.name == name) throw std::invalid_argument("register_map: '" + name + "' is registered twice");
-  for (const auto& stepper : odeint_steppers())
-    if (stepper.name == name) throw std::invalid_argument("register_map: '" + name + "' names an odeint stepper");
-  if (order < 1) throw std::invalid_argument("register_map: '" + name + "' needs an order of at least 1");
-  const RegisteredMap info{name, order};
-  auto add = [&]<class T, int n>() {
-    map_factories<T, n>()[name] = [info, method](const SeparableSystem<T, n>& system) {
-      return std::shared_ptr<const OneStepMap<T, n>>(std::make_shared<const UserMap<Method, T, n>>(info, method, system));
-    };
-  };
-  add.template operator()<mpfr_real, 1>();
-  add.template operator()<mpfr_real, 2>();
-  add.template operator()<mpfr_real, 3>();
-  add.template operator()<mpfr_real, 4>();
-  add.template operator()<double, 1>();
-  add.template operator()<double, 2>();
-  add.template operator()<long double, 1>();
-  add.template operator()<long double, 2>();
-  add.template operator()<quad, 1>();
-  add.template operator()<quad, 2>();
-  registered_maps().push_back(info);
-}
 
 namespace detail {
 
@@ -159,6 +137,32 @@ V record_rule(const Rule& rule, const std::vector<V>& qb, const std::vector<V>& 
 }
 
 }  // namespace detail
+
+template <class Method>
+void register_map(const std::string& name, int order, Method method) {
+  std::vector<std::string> taken;
+  for (const auto& registered : registered_maps()) taken.push_back(registered.name);
+  for (const auto& stepper : odeint_steppers()) taken.push_back(stepper.name);
+  detail::check_new_name("register_map", name, taken);
+  if (order < 1) throw std::invalid_argument("register_map: '" + name + "' needs an order of at least 1");
+  const RegisteredMap info{name, order};
+  auto add = [&]<class T, int n>() {
+    map_factories<T, n>()[name] = [info, method](const SeparableSystem<T, n>& system) {
+      return std::shared_ptr<const OneStepMap<T, n>>(std::make_shared<const UserMap<Method, T, n>>(info, method, system));
+    };
+  };
+  add.template operator()<mpfr_real, 1>();
+  add.template operator()<mpfr_real, 2>();
+  add.template operator()<mpfr_real, 3>();
+  add.template operator()<mpfr_real, 4>();
+  add.template operator()<double, 1>();
+  add.template operator()<double, 2>();
+  add.template operator()<long double, 1>();
+  add.template operator()<long double, 2>();
+  add.template operator()<quad, 1>();
+  add.template operator()<quad, 2>();
+  registered_maps().push_back(info);
+}
 
 template <class System>
 void register_system(const std::string& name, System system) {

@@ -54,7 +54,8 @@ struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {
                                         "of Numerical Algorithms, ch. 2)";
   static constexpr const char* prediction =
       "the floor of the relative local defect min_h |Φ_h(x0) − F_h(x0)| / |F_h(x0) − x0| falls with the "
-      "precision: from d to 2d digits by at least half the d·r/(r+1) digits rounding predicts";
+      "precision, from d to 2d digits by at least half the d·r/(r+2) digits rounding predicts, and above the "
+      "2d-digit floor the defect keeps its order r";
   // The order r of the relative defect: the method's (that of its global error), or the order
   // the case declares for this claim.
   template <LagrangianSystem System>
