@@ -8,6 +8,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "core/scalar.hpp"
 
@@ -15,6 +16,8 @@ namespace vivv {
 
 struct SolverError : std::runtime_error {
   using std::runtime_error::runtime_error;
+  // The message already says which step sizes converge (harness/run_system_impl.hpp).
+  bool step_sizes_probed = false;
 };
 
 template <class T>
@@ -28,13 +31,38 @@ struct SolveReport {
   // where Newton contracts (its quadratic regime), not merely somewhere it happens to converge.
   bool contracting = true;
   std::string failure;
+  std::vector<T> corrections;  // max norm of every correction, in order
 };
 
 struct NewtonOptions {
   int max_iterations = 60;
+  // Stopped as not converging at the first sign of it: a correction `runaway_factor` times
+  // the smallest before it, or `stagnation_limit` corrections in a row none below the
+  // smallest before them. Newton that converges shrinks its correction (quadratically once
+  // close); one that runs away or wanders does not, and each further evaluation can be
+  // expensive (an exact psi over a large h integrates the flow from the wandering iterate).
+  // Rounding is not mistaken for it: a correction at the residual's rounding level ends
+  // the solve as converged first (`stalled`).
+  int runaway_factor = 16;
+  int stagnation_limit = 3;
   // Converged when each correction component is below correction_ulps · ε · max(scale_i, |x_i|).
   int correction_ulps = 64;
 };
+
+// "a, b, c, …" of the corrections (the first and the last few when there are many).
+template <class T>
+std::string describe_corrections(const std::vector<T>& corrections) {
+  std::string text;
+  for (std::size_t i = 0; i < corrections.size(); ++i) {
+    if (corrections.size() > 8 && i == 2) {
+      text += ", …";
+      i = corrections.size() - 5;
+      continue;
+    }
+    text += (i ? ", " : "") + to_decimal<T>(corrections[i], 3);
+  }
+  return text;
+}
 
 // Solves F(x) = 0 from x (updated in place). `evaluate(x, F, J)` fills the
 // residual F(x) and its Jacobian J = dF/dx. Iteration: x ← x − J⁻¹ F(x).
@@ -46,6 +74,8 @@ SolveReport<T> newton_solve(Vector<T, m>& x, Evaluate&& evaluate, const NewtonOp
   using std::isfinite;
   SolveReport<T> report;
   T previous_correction = 0;
+  T smallest_correction = 0;
+  int without_progress = 0;
   Vector<T, m> residual = Vector<T, m>::Zero();
   Matrix<T, m, m> jacobian = Matrix<T, m, m>::Zero();
   for (report.iterations = 1; report.iterations <= options.max_iterations; ++report.iterations) {
@@ -60,8 +90,10 @@ SolveReport<T> newton_solve(Vector<T, m>& x, Evaluate&& evaluate, const NewtonOp
     Vector<T, m> correction = lu.solve(residual);
     x -= correction;
     report.correction = max_norm<T, m>(correction);
+    report.corrections.push_back(report.correction);
     if (!isfinite(static_cast<T>(report.correction))) {
-      report.failure = "the iteration diverged to a non-finite value";
+      report.failure = "the iteration diverged to a non-finite value (corrections " +
+                       describe_corrections(report.corrections) + ")";
       return report;
     }
     bool small = true;
@@ -86,11 +118,27 @@ SolveReport<T> newton_solve(Vector<T, m>& x, Evaluate&& evaluate, const NewtonOp
       report.stalled = stalled && !small;
       return report;
     }
+    if (report.iterations == 1 || report.correction < smallest_correction) {
+      smallest_correction = report.correction;
+      without_progress = 0;
+    } else if (report.correction >= options.runaway_factor * smallest_correction) {
+      report.residual = max_norm<T, m>(residual);
+      report.failure = "diverging: a correction " + std::to_string(options.runaway_factor) +
+                       " times the smallest before it (corrections " + describe_corrections(report.corrections) +
+                       ")";
+      return report;
+    } else if (++without_progress >= options.stagnation_limit) {
+      report.residual = max_norm<T, m>(residual);
+      report.failure = "not converging: the last " + std::to_string(without_progress) +
+                       " corrections were none below the smallest before them (corrections " +
+                       describe_corrections(report.corrections) + ")";
+      return report;
+    }
   }
   report.iterations = options.max_iterations;
   report.residual = max_norm<T, m>(residual);
   report.failure = "no convergence in " + std::to_string(options.max_iterations) +
-                   " iterations (last correction " + to_decimal<T>(report.correction) + ")";
+                   " iterations (corrections " + describe_corrections(report.corrections) + ")";
   return report;
 }
 

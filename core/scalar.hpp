@@ -109,6 +109,15 @@ std::string to_decimal(const T& x) {
   return out.str();
 }
 
+// Writes x in scientific notation with `digits` significant digits (for messages).
+template <class T>
+std::string to_decimal(const T& x, int digits) {
+  std::ostringstream out;
+  out.precision(digits - 1);
+  out << std::scientific << x;
+  return out.str();
+}
+
 template <class T, int n>
 using Vector = Eigen::Matrix<T, n, 1>;
 template <class T, int rows, int cols>

@@ -214,7 +214,8 @@ nlohmann::json run_one(const CaseSpec& spec, const RunOptions& options) {
   } catch (const CaseError&) {
     throw;  // names the file and the field already
   } catch (const SolverError& error) {
-    throw BadInput(spec.file + ": " + error.what() + " (reduce h: increase the step counts)");
+    throw BadInput(spec.file + ": " + error.what() +
+                   (error.step_sizes_probed ? "" : " (reduce h: increase the step counts)"));
   } catch (const SingularLagrangianError& error) {
     throw BadInput(spec.file + ": " + error.what());
   } catch (const std::domain_error& error) {

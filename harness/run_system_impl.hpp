@@ -27,6 +27,66 @@ void check_motion_above_floor(const CaseContext<System>& context) {
                       "an initial state that moves");
 }
 
+// Whether the case's first step from the initial state, of size h, converges (a map's
+// explicit step always does): what a solver failure is explained by.
+template <LagrangianSystem System>
+bool first_step_converges(const CaseContext<System>& context, const typename System::Scalar& h) {
+  try {
+    if (context.map) return true;
+    if (context.tq)
+      return tq_step(context.system, context.tq_past ? *context.tq_past : *context.tq, *context.tq,
+                     context.initial, h)
+          .report.converged;
+    const auto [q0, q1] = context.start(context.scheme, h);
+    return del_step(context.system, context.scheme, q0, q1, h).second.converged;
+  } catch (const SolverError&) {
+    return false;
+  } catch (const std::domain_error&) {  // an iterate left the Lagrangian's domain
+    return false;
+  }
+}
+
+// After a Newton solve failed: which step sizes T/N take their first step, over the sweep
+// and halving h past its finest (at most `beyond` times), so the message can say the largest
+// h that converged. Each probe stops at Newton's first sign of divergence (core/newton.hpp).
+template <LagrangianSystem System>
+std::string first_step_probe(const CaseContext<System>& context, int beyond = 10) {
+  using T = typename System::Scalar;
+  const std::vector<int>& sweep = context.spec.steps;  // increasing: h decreases
+  auto listed = [](const std::vector<int>& steps) {
+    std::string text;
+    for (std::size_t i = 0; i < steps.size(); ++i) text += (i ? ", " : "") + std::to_string(steps[i]);
+    return text;
+  };
+  std::vector<int> failed, converged;
+  for (int N : sweep) {
+    context.report("probing the first step with N = " + std::to_string(N));
+    (first_step_converges(context, context.final_time / N) ? converged : failed).push_back(N);
+  }
+  const std::string from = "the first step from the initial state ";
+  if (failed.empty())
+    return from + "converges at every h of the sweep: the solve failed further along, where the state has moved";
+  if (!converged.empty()) {
+    const int largest = converged.front();
+    return from + "fails for N = " + listed(failed) + " and converges for N = " + listed(converged) +
+           "; the largest h that converged is " + to_decimal<T>(context.final_time / largest, 6) + " (N = " +
+           std::to_string(largest) + ")" +
+           (largest > failed.back() ? ": drop the step counts below " + std::to_string(largest) : "");
+  }
+  long N = sweep.back();
+  for (int halving = 1; halving <= beyond && 2 * N <= SweepRecord::max_steps; ++halving) {
+    N *= 2;
+    context.report("probing the first step with N = " + std::to_string(N));
+    if (first_step_converges(context, context.final_time / T(N)))
+      return from + "fails at every h of the sweep (N = " + listed(failed) + ") and converges at h = " +
+             to_decimal<T>(context.final_time / T(N), 6) + " (N = " + std::to_string(N) +
+             "), the largest h = T/N with N = " + std::to_string(sweep.back()) +
+             "·2^j that converged: take step counts of at least " + std::to_string(N);
+  }
+  return from + "fails at every h of the sweep (N = " + listed(failed) + ") and at every h = T/N down to N = " +
+         std::to_string(N) + ": no step size tried converged";
+}
+
 template <LagrangianSystem System>
 void run_on_system(const System& system, CaseSpec& spec, CaseResult& result, bool refine,
                    const std::function<void(const std::string&)>& progress) {
@@ -48,7 +108,13 @@ void run_on_system(const System& system, CaseSpec& spec, CaseResult& result, boo
     result.claims.clear();
     for (const auto& id : spec.claims) {
       if (progress) progress(spec.name + ": claim " + id);
-      result.claims.push_back(evaluate_claim(id, context));
+      try {
+        result.claims.push_back(evaluate_claim(id, context));
+      } catch (const SolverError& error) {
+        SolverError explained(std::string(error.what()) + "; " + first_step_probe(context));
+        explained.step_sizes_probed = true;
+        throw explained;
+      }
     }
     if (!refine) break;
     // --refine: halve h (double N) until every order-fitted series settles, within the budget.

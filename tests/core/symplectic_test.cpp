@@ -14,7 +14,7 @@ namespace {
 
 // Hénon–Heiles: L = |w|²/2 − (x² + y²)/2 − x²y + y³/3, nonlinear and in two dimensions.
 template <class T>
-struct HenonHeiles {
+struct HenonHeilesWithHessian {
   using Scalar = T;
   static constexpr int dimension = 2;
   static constexpr const char* name = "henon_heiles";
@@ -34,7 +34,7 @@ struct HenonHeiles {
 template <class T>
 class SymplecticTest : public testing::ScalarTest<T> {
  protected:
-  HenonHeiles<T> system;
+  HenonHeilesWithHessian<T> system;
   // Created when asked, under the fixture's precision: a member initialized before SetUp would
   // carry MPFR's default precision into every result computed from it.
   T h = T(0);

@@ -1,0 +1,93 @@
+// Newton's stop at the first sign of divergence (core/newton.hpp): a solve that
+// cannot converge ends after a few corrections, saying which, and one that
+// converges is not stopped by it.
+#include "core/newton.hpp"
+
+#include <gtest/gtest.h>
+
+#include "tests/test_scalars.hpp"
+
+namespace vivv {
+namespace {
+
+template <class T>
+class NewtonTest : public testing::ScalarTest<T> {};
+TYPED_TEST_SUITE(NewtonTest, testing::Scalars, testing::ScalarNames);
+
+// arctan x = 0: Newton converges from |x0| below about 1.39 and runs away from above it
+// (each iterate larger in size than the one before, alternating in sign).
+template <class T>
+SolveReport<T> solve_arctan(T& x, int* evaluations = nullptr) {
+  Vector<T, 1> at;
+  at[0] = x;
+  auto report = newton_solve<T, 1>(at, [&](const Vector<T, 1>& v, Vector<T, 1>& residual, Matrix<T, 1, 1>& jacobian) {
+    using std::atan;
+    if (evaluations) ++*evaluations;
+    residual[0] = atan(v[0]);
+    jacobian(0, 0) = 1 / (1 + v[0] * v[0]);
+  });
+  x = at[0];
+  return report;
+}
+
+TYPED_TEST(NewtonTest, ConvergesFromInsideTheBasin) {
+  using T = TypeParam;
+  T x = T(13) / 10;
+  auto report = solve_arctan(x);
+  ASSERT_TRUE(report.converged) << report.failure;
+  using std::abs;
+  EXPECT_LE(abs(x), this->working_tolerance());
+}
+
+// The negative control: from x0 = 3 the corrections grow (about 12.5, 134, 2.4e4, …); the
+// third is more than 16 times the first and the solve stops there instead of running its
+// 60 iterations.
+TYPED_TEST(NewtonTest, StopsAtTheFirstSignOfDivergence) {
+  using T = TypeParam;
+  T x = 3;
+  int evaluations = 0;
+  auto report = solve_arctan(x, &evaluations);
+  EXPECT_FALSE(report.converged);
+  EXPECT_EQ(evaluations, 3);
+  EXPECT_NE(report.failure.find("diverging"), std::string::npos) << report.failure;
+  EXPECT_NE(report.failure.find("corrections"), std::string::npos) << report.failure;
+  EXPECT_EQ(static_cast<int>(report.corrections.size()), report.iterations);
+  // With the stop switched off, the same start runs to the iteration limit (or overflows).
+  NewtonOptions patient;
+  patient.runaway_factor = 1 << 30;
+  patient.stagnation_limit = 1000;
+  Vector<T, 1> at;
+  at[0] = 3;
+  int patient_evaluations = 0;
+  auto patient_report = newton_solve<T, 1>(
+      at,
+      [&](const Vector<T, 1>& v, Vector<T, 1>& residual, Matrix<T, 1, 1>& jacobian) {
+        using std::atan;
+        ++patient_evaluations;
+        residual[0] = atan(v[0]);
+        jacobian(0, 0) = 1 / (1 + v[0] * v[0]);
+      },
+      patient);
+  EXPECT_FALSE(patient_report.converged);
+  EXPECT_GT(patient_evaluations, evaluations);
+}
+
+// Corrections that neither grow nor shrink: Newton on F = x³ − 2x + 2 from 0 cycles
+// 0 → 1 → 0 → … with every correction 1; the third in a row not below the first stops it.
+TYPED_TEST(NewtonTest, StopsWhenTheCorrectionsStopShrinking) {
+  using T = TypeParam;
+  Vector<T, 1> at;
+  at[0] = 0;
+  int evaluations = 0;
+  auto report = newton_solve<T, 1>(at, [&](const Vector<T, 1>& v, Vector<T, 1>& residual, Matrix<T, 1, 1>& jacobian) {
+    ++evaluations;
+    residual[0] = v[0] * v[0] * v[0] - 2 * v[0] + 2;
+    jacobian(0, 0) = 3 * v[0] * v[0] - 2;
+  });
+  EXPECT_FALSE(report.converged);
+  EXPECT_EQ(evaluations, 4);
+  EXPECT_NE(report.failure.find("not converging"), std::string::npos) << report.failure;
+}
+
+}  // namespace
+}  // namespace vivv
