@@ -120,7 +120,7 @@ INSTANTIATE_TEST_SUITE_P(Scalars, RunCaseScalarTest, ::testing::Values("double",
 // Negative control of the floors: the same case's floor in double is at least 1e20 times MPFR's.
 TEST(RunCaseScalarFloor, FollowsTheScalar) {
   auto floor_of = [](const std::string& scalar) {
-    CaseResult result = run_case(case_in(scalar, pendulum_formula, {{"kind", "midpoint"}}, {"lagrangian-order"}),
+    CaseResult result = run_case(case_in(scalar, pendulum_formula, {{"kind", "midpoint"}}, {"global-order"}),
                                  std::nullopt, false, {});
     return std::stold(result.claims.at(0).series.at(0).floor);
   };
