@@ -6,6 +6,7 @@
 // they are equal except in the mismatched DEL of paper §2.3.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -56,12 +57,14 @@ auto del_step(const System& system, const DelScheme<typename System::Scalar>& sc
 }
 
 // q_0, ..., q_N from (q_0, q_1) by N − 1 DEL steps of size h. A step whose
-// Newton solve fails is an error naming the step and h.
+// Newton solve fails is an error naming the step and h. `after_step(k, N)`, when given,
+// is called after each step (the harness throttles it into progress lines).
 template <LagrangianSystem System>
 auto del_trajectory(const System& system, const DelScheme<typename System::Scalar>& scheme,
                     const Vector<typename System::Scalar, System::dimension>& q0,
                     const Vector<typename System::Scalar, System::dimension>& q1,
-                    const typename System::Scalar& h, int steps) {
+                    const typename System::Scalar& h, int steps,
+                    const std::function<void(int, int)>& after_step = {}) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
   DelTrajectory<T, n> trajectory;
@@ -70,10 +73,11 @@ auto del_trajectory(const System& system, const DelScheme<typename System::Scala
   for (int k = 1; k < steps; ++k) {
     auto [q_next, report] = del_step(system, scheme, trajectory.q[k - 1], trajectory.q[k], h);
     require_converged(report, "DEL step " + std::to_string(k) + " of " + std::to_string(steps) +
-                                  " with h = " + to_decimal<T>(h));
+                                  " with h = " + to_decimal<T>(h, 17));
     trajectory.max_iterations = std::max(trajectory.max_iterations, report.iterations);
     trajectory.max_residual = std::max<T>(trajectory.max_residual, report.residual);
     trajectory.q.push_back(q_next);
+    if (after_step) after_step(k + 1, steps);
   }
   return trajectory;
 }
@@ -95,7 +99,7 @@ auto start_from_momentum(const System& system, const QxQDiscretization<typename 
     residual = legendre.p_begin - p0;
     jacobian = legendre.dp_begin_dq_e;
   });
-  require_converged(report, "start from p_begin(q0, q1) = p(0) with h = " + to_decimal<T>(h));
+  require_converged(report, "start from p_begin(q0, q1) = p(0) with h = " + to_decimal<T>(h, 17));
   return q1;
 }
 

@@ -168,7 +168,7 @@ DiscreteLegendre<typename System::Scalar, System::dimension> galerkin_legendre(
   GalerkinAction<T> S = galerkin_action(system, rule, C, h);
   for (int iteration = 0; interior > 0; ++iteration) {
     if (iteration == 60)
-      throw SolverError("Galerkin interior solve (" + rule.spec.describe() + ") at h = " + to_decimal<T>(h) +
+      throw SolverError("Galerkin interior solve (" + rule.spec.describe() + ") at h = " + to_decimal<T>(h, 17) +
                         ": Newton did not converge in 60 iterations");
     const Eigen::Matrix<T, Eigen::Dynamic, 1> correction =
         S.hessian.block(n, n, interior, interior).fullPivLu().solve(S.gradient.segment(n, interior));
@@ -180,7 +180,7 @@ DiscreteLegendre<typename System::Scalar, System::dimension> galerkin_legendre(
     largest = correction.cwiseAbs().maxCoeff();
     using std::isfinite;
     if (!isfinite(largest))
-      throw SolverError("Galerkin interior solve (" + rule.spec.describe() + ") at h = " + to_decimal<T>(h) +
+      throw SolverError("Galerkin interior solve (" + rule.spec.describe() + ") at h = " + to_decimal<T>(h, 17) +
                         ": Newton diverged (the action's interior Hessian is singular)");
     S = galerkin_action(system, rule, C, h);
     if (largest <= 64 * epsilon<T>() * size) break;

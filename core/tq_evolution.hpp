@@ -9,6 +9,7 @@
 // the identity): Newton starts there.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "core/newton.hpp"
@@ -139,14 +140,15 @@ std::vector<State<typename System::Scalar, System::dimension>> tq_trajectory(
     const System& system, const TQDiscretization<typename System::Scalar>& past,
     const TQDiscretization<typename System::Scalar>& future,
     const State<typename System::Scalar, System::dimension>& v, const typename System::Scalar& h,
-    int steps) {
+    int steps, const std::function<void(int, int)>& after_step = {}) {
   using T = typename System::Scalar;
   std::vector<State<T, System::dimension>> trajectory{v};
   for (int k = 0; k < steps; ++k) {
     auto step = tq_step(system, past, future, trajectory.back(), h);
     require_converged(step.report, "TQ step " + std::to_string(k + 1) + " of " +
-                                       std::to_string(steps) + " with h = " + to_decimal<T>(h));
+                                       std::to_string(steps) + " with h = " + to_decimal<T>(h, 17));
     trajectory.push_back(step.next);
+    if (after_step) after_step(k + 1, steps);
   }
   return trajectory;
 }
@@ -156,8 +158,8 @@ template <LagrangianSystem System>
 std::vector<State<typename System::Scalar, System::dimension>> tq_trajectory(
     const System& system, const TQDiscretization<typename System::Scalar>& d,
     const State<typename System::Scalar, System::dimension>& v, const typename System::Scalar& h,
-    int steps) {
-  return tq_trajectory(system, d, d, v, h, steps);
+    int steps, const std::function<void(int, int)>& after_step = {}) {
+  return tq_trajectory(system, d, d, v, h, steps, after_step);
 }
 
 // The blown-up critical point (v, ṽ) at fixed end points (paper §2.4, proof of

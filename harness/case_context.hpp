@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <chrono>
 #include <functional>
 #include <map>
 #include <memory>
@@ -254,6 +255,7 @@ struct CaseContext {
       initial.q[i] = from_decimal<T>(spec.q[i]);
       initial.w[i] = from_decimal<T>(spec.w[i]);
     }
+    report("reference flow to T = " + spec.final_time);
     final_state = reference.advance(initial, final_time);
     if (spec.discretization.formalism == "map") map = make_map();
     if (spec.discretization.formalism == "tq") {
@@ -351,6 +353,18 @@ struct CaseContext {
 
   void report(const std::string& message) const {
     if (progress) progress(message);
+  }
+
+  // For a long loop of steps: "<what>: step k of N" at most every five seconds (none without
+  // progress), so that a million-step sweep is not minutes of silence.
+  std::function<void(int, int)> step_progress(const std::string& what) const {
+    if (!progress) return {};
+    using clock = std::chrono::steady_clock;
+    return [this, what, last = clock::now()](int k, int steps) mutable {
+      if (clock::now() - last < std::chrono::seconds(5)) return;
+      last = clock::now();
+      report(what + ": step " + std::to_string(k) + " of " + std::to_string(steps));
+    };
   }
 };
 

@@ -44,7 +44,7 @@ std::vector<typename System::Scalar> measure_each_step(const CaseContext<System>
   using T = typename System::Scalar;
   std::vector<T> values;
   for (const T& h : context.steps()) {
-    context.report(what + " at h = " + to_decimal<T>(h));
+    context.report(what + " at h = " + to_decimal<T>(h, 6));
     values.push_back(measure(h));
   }
   return values;

@@ -155,7 +155,16 @@ void run_on_system(const System& system, CaseSpec& spec, CaseResult& result, boo
       result.reference_method = context.reference.method();
       result.reference_tolerance = to_decimal<T>(context.reference.tolerance());
       result.reference_cross_check = context.reference.cross_check();
-      result.reference_check = check_reference(context.reference, context.initial, context.final_time);
+      context.report("cross-checking the reference flow to T against an independent integration");
+      try {
+        result.reference_check = check_reference(context.reference, context.initial, context.final_time);
+      } catch (const SolverError&) {
+        throw;
+      } catch (const SingularLagrangianError&) {
+        throw;  // names the state already
+      } catch (const std::runtime_error& error) {  // a flow that cannot reach T
+        throw std::runtime_error(std::string("the reference flow's cross-check: ") + error.what());
+      }
       result.reference_error_estimate = result.reference_check.error_estimate;
     }
     result.claims.clear();

@@ -23,7 +23,7 @@ Series make_series(const std::string& label, const std::vector<T>& h, const std:
   using std::isfinite;
   for (std::size_t i = 0; i < error.size(); ++i)
     if (!isfinite(error[i]))
-      throw std::domain_error(label + " is " + to_decimal<T>(error[i]) + " at h = " + to_decimal<T>(h[i]) +
+      throw std::domain_error(label + " is " + to_decimal<T>(error[i]) + " at h = " + to_decimal<T>(h[i], 17) +
                               ": the computation left the finite numbers (a step too large for the method, or a "
                               "state outside the Lagrangian's domain); nothing is fitted to it");
   Series series;

@@ -219,10 +219,20 @@ ExtrapolationSolution<T, d> gragg_bulirsch_stoer(F f, const Vector<T, d>& y0, co
   int consecutive_rejections = 0;
 
   while (true) {
-    if (report.steps + report.rejected_steps >= options.max_steps) {
-      throw std::runtime_error("gragg_bulirsch_stoer: more than " +
-                               std::to_string(options.max_steps) + " steps to reach t = " +
-                               to_decimal<T>(t_end) + " (stopped at t = " + to_decimal<T>(t) + ")");
+    const long taken = report.steps + report.rejected_steps;
+    // Fail fast: after a thousand steps, a pace that would need more than the limit ends the
+    // run now instead of after max_steps steps (minutes in MPFR).
+    const bool projected_over = taken >= 1000 && t != 0 &&
+                                static_cast<double>(abs(t_end / t)) * static_cast<double>(taken) > options.max_steps;
+    if (taken >= options.max_steps || projected_over) {
+      const double projected = t != 0 ? static_cast<double>(abs(t_end / t)) * static_cast<double>(taken) : 0;
+      throw std::runtime_error(
+          "the extrapolation (Gragg–Bulirsch–Stoer) flow would need " +
+          (t != 0 ? "about " + to_decimal(projected, 2) : std::string("more than ") + std::to_string(taken)) +
+          " steps to reach t = " + to_decimal<T>(t_end, 6) + " (" + std::to_string(taken) + " steps reached t = " +
+          to_decimal<T>(t, 6) + ", tolerance " + to_decimal<T>(tol, 3) + "); its limit is " +
+          std::to_string(options.max_steps) +
+          ": the motion is too fast, or too long, for this T at this tolerance (take a smaller T)");
     }
     const T remaining = t_end - t;
     if (h <= 8 * epsilon<T>() * max(abs(t), abs(t_end))) {

@@ -77,11 +77,18 @@ class TaylorIntegrator {
   // Appends steps (full Jorba–Zou steps, never shortened) until the trajectory covers t_end.
   void extend(TaylorTrajectory<T>& trajectory, const T& t_end);
 
-  long max_steps = 10000000;
+  // Steps one advance or extend may take; a pace that would need more ends the run after a
+  // thousand steps (the message says how many it would take). A dense trajectory keeps every
+  // step's polynomial: a million steps of order 60 in 2 coordinates are gigabytes in MPFR.
+  long max_steps = 1000000;
 
  private:
   // ρ e^{−2} e^{−0.7/(p−1)} from the current expansion; +∞ when the last two orders vanish.
   T jorba_zou_step() const;
+
+  // Throws when the `steps` steps taken from `from` reached `now` on the way to `target` at a
+  // pace that would need more than max_steps (checked from the thousandth step on).
+  void check_pace(long steps, const T& from, const T& now, const T& target) const;
 
   // result = Σ_{k=0..p} coefficient(k) τ^k by Horner, in place.
   template <class Coefficient>
@@ -162,9 +169,7 @@ TaylorStep<T> TaylorIntegrator<T>::step(const std::vector<T>& y, const T& t, int
   const int m = dimension();
   if (static_cast<int>(y.size()) != 2 * m)
     throw std::invalid_argument("TaylorIntegrator::step: state of the wrong size");
-  if (++report_.steps > max_steps)
-    throw std::runtime_error("TaylorIntegrator: more than " + std::to_string(max_steps) +
-                             " steps");
+  ++report_.steps;
   expansion_.expand(y.data(), y.data() + m, order_);
   T length = jorba_zou_step();
   if (clip ? !(length < abs(limit)) : !isfinite(length)) length = abs(limit);
@@ -186,6 +191,23 @@ TaylorStep<T> TaylorIntegrator<T>::step(const std::vector<T>& y, const T& t, int
 }
 
 template <class T>
+void TaylorIntegrator<T>::check_pace(long steps, const T& from, const T& now, const T& target) const {
+  using std::abs;
+  const T covered = abs(T(now - from));
+  const bool over_pace = steps >= 1000 && covered != 0 &&
+                         static_cast<double>(abs(T(target - from)) / covered) * static_cast<double>(steps) > max_steps;
+  if (steps < max_steps && !over_pace) return;
+  const std::string projected =
+      covered != 0 ? "about " + to_decimal(static_cast<double>(abs(T(target - from)) / covered) * steps, 2)
+                   : "more than " + std::to_string(steps);
+  throw std::runtime_error("the Taylor-series flow would need " + projected + " steps to reach t = " +
+                           to_decimal<T>(target, 6) + " (" + std::to_string(steps) + " steps reached t = " +
+                           to_decimal<T>(now, 6) + ", step tolerance " + to_decimal<T>(tolerance_, 3) +
+                           "); its limit is " + std::to_string(max_steps) +
+                           ": the motion is too fast, or too long, for this T at this precision (take a smaller T)");
+}
+
+template <class T>
 std::vector<T> TaylorIntegrator<T>::advance(std::vector<T> y, const T& t) {
   using boost::multiprecision::isfinite;
   using std::abs;
@@ -194,10 +216,10 @@ std::vector<T> TaylorIntegrator<T>::advance(std::vector<T> y, const T& t) {
   if (static_cast<int>(y.size()) != 2 * m)
     throw std::invalid_argument("TaylorIntegrator::advance: state of the wrong size");
   T now = 0, length = 0;
+  long taken = 0;
   while (now != t) {
-    if (++report_.steps > max_steps)
-      throw std::runtime_error("TaylorIntegrator: more than " + std::to_string(max_steps) +
-                               " steps");
+    ++report_.steps;
+    check_pace(taken++, T(0), now, t);
     const T remaining = t - now;
     expansion_.expand(y.data(), y.data() + m, order_);
     length = jorba_zou_step();
@@ -216,7 +238,10 @@ std::vector<T> TaylorIntegrator<T>::advance(std::vector<T> y, const T& t) {
 
 template <class T>
 void TaylorIntegrator<T>::extend(TaylorTrajectory<T>& trajectory, const T& t_end) {
+  const T from = trajectory.end_time();
+  long taken = 0;
   while (!trajectory.covers(t_end)) {
+    check_pace(taken++, from, trajectory.end_time(), t_end);
     // Steps are never shortened, so the trajectory from a state does not depend on how far it
     // was asked to go; the remaining span only bounds a step with vanishing coefficients.
     T remaining = t_end - trajectory.end_time();

@@ -33,7 +33,7 @@ struct ExactDiscretizationClaim : Claim<ExactDiscretizationClaim> {
     const T theta = context.tq->theta;
     nlohmann::json printed = nlohmann::json::array();
     for (const T& h : context.steps()) {
-      context.report("exact-discretization at h = " + to_decimal<T>(h));
+      context.report("exact-discretization at h = " + to_decimal<T>(h, 6));
       State<T, n> exact = context.exact(h);
       const State<T, n> evolved = tq_map(context, *context.tq, h);
       T scale = max(T(1), max(max_norm<T, n>(exact.q), max_norm<T, n>(exact.w)));

@@ -44,7 +44,7 @@ void visit_map_trajectories(const CaseContext<System>& context, const std::strin
   const std::vector<T> steps = context.steps();
   for (std::size_t i = 0; i < steps.size(); ++i) {
     const int N = context.spec.steps[i];
-    context.report(what + " over " + std::to_string(N) + " steps at h = " + to_decimal<T>(steps[i]));
+    context.report(what + " over " + std::to_string(N) + " steps at h = " + to_decimal<T>(steps[i], 6));
     visit(steps[i], map_trajectory(context, steps[i], N));
   }
 }
@@ -60,7 +60,8 @@ SweepRun<System> run_sweep(const CaseContext<System>& context, const DelScheme<t
     int N = context.spec.steps[i];
     if (context.tq) {  // the TQ evolution from the exact initial state
       context.report("TQ sweep N = " + std::to_string(N));
-      auto states = tq_trajectory(context.system, *context.tq, context.initial, h, N);
+      auto states = tq_trajectory(context.system, *context.tq, context.initial, h, N,
+                                  context.step_progress("TQ sweep N = " + std::to_string(N)));
       run.q_final.push_back(states.back().q);
       run.p_final.push_back(momentum(context.system, states.back().q, states.back().w));
       continue;
@@ -74,7 +75,8 @@ SweepRun<System> run_sweep(const CaseContext<System>& context, const DelScheme<t
     }
     context.report("DEL sweep N = " + std::to_string(N));
     auto [q0, q1] = context.start(scheme, h);
-    auto trajectory = del_trajectory(context.system, scheme, q0, q1, h, N);
+    auto trajectory =
+        del_trajectory(context.system, scheme, q0, q1, h, N, context.step_progress("DEL sweep N = " + std::to_string(N)));
     run.q_final.push_back(trajectory.q[N]);
     run.p_final.push_back(discrete_legendre(context.system, scheme.future, trajectory.q[N - 1],
                                             trajectory.q[N], h)
@@ -94,7 +96,7 @@ void visit_trajectories(const CaseContext<System>& context, const std::string& w
   const std::vector<T> steps = context.steps();
   for (std::size_t i = 0; i < steps.size(); ++i) {
     const auto& q = run.trajectories[i].q;
-    context.report(what + " over " + std::to_string(q.size() - 1) + " steps at h = " + to_decimal<T>(steps[i]));
+    context.report(what + " over " + std::to_string(q.size() - 1) + " steps at h = " + to_decimal<T>(steps[i], 6));
     visit(steps[i], q);
   }
 }

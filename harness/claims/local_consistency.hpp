@@ -68,11 +68,11 @@ struct LagrangianOrderClaim : Claim<LagrangianOrderClaim> {
     T velocity_mismatch = 0;
     int nodes = 0;
     for (const T& h : context.steps()) {
-      context.report("lagrangian-order: L_d^E at h = " + to_decimal<T>(h));
+      context.report("lagrangian-order: L_d^E at h = " + to_decimal<T>(h, 6));
       Vector<T, n> q_end = context.exact(h).q;
       auto exact = exact_lagrangian(context.initial.q, q_end, h, &context.initial.w);
       if (!exact.converged)
-        throw SolverError("exact discrete Lagrangian at h = " + to_decimal<T>(h) +
+        throw SolverError("exact discrete Lagrangian at h = " + to_decimal<T>(h, 17) +
                           ": shooting did not converge (residual " + to_decimal<T>(exact.residual) + ")");
       using std::max;
       velocity_mismatch = max(velocity_mismatch, max_norm<T, n>(exact.w_begin - context.initial.w));

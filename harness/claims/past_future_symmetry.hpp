@@ -45,13 +45,13 @@ struct PastFutureSymmetryClaim : Claim<PastFutureSymmetryClaim> {
     std::vector<T> difference, asymmetry;
     nlohmann::json rows = nlohmann::json::array();
     for (const T& h : context.steps()) {
-      context.report("past-future-symmetry at h = " + to_decimal<T>(h));
+      context.report("past-future-symmetry at h = " + to_decimal<T>(h, 6));
       const Vector<T, n> q_minus = context.initial.q;
       const Vector<T, n> q_plus = context.exact(T(2 * h)).q;
       auto one = tq_critical_pair(context.system, first_past, first_future, q_minus, q_plus, h);
-      require_converged(one.report, "first critical pair at h = " + to_decimal<T>(h));
+      require_converged(one.report, "first critical pair at h = " + to_decimal<T>(h, 17));
       auto two = tq_critical_pair(context.system, second, second, q_minus, q_plus, h);
-      require_converged(two.report, "second critical pair at h = " + to_decimal<T>(h));
+      require_converged(two.report, "second critical pair at h = " + to_decimal<T>(h, 17));
       Vector<T, n> dw = two.v.w - one.v.w, dw_next = two.v_next.w - one.v_next.w;
       difference.push_back(max(max_norm<T, n>(dw), max_norm<T, n>(dw_next)));
       asymmetry.push_back(max_norm<T, n>(Vector<T, n>(dw - dw_next)));

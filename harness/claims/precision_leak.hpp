@@ -254,7 +254,7 @@ struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {
       q1 = x1.q, p1 = momentum(system, x1.q, x1.w);
     } else if (context.tq) {
       const auto step = tq_step(system, *context.tq, x0, h);
-      require_converged(step.report, "precision-leak: TQ step with h = " + to_decimal<T>(h));
+      require_converged(step.report, "precision-leak: TQ step with h = " + to_decimal<T>(h, 17));
       q1 = step.next.q, p1 = momentum(system, step.next.q, step.next.w);
     } else {
       q1 = start_from_momentum(system, context.scheme.future, x0.q, x0.w, h);

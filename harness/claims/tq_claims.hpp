@@ -24,7 +24,7 @@ State<typename System::Scalar, System::dimension> tq_map(const CaseContext<Syste
                                                          const TQDiscretization<typename System::Scalar>* past = nullptr) {
   using T = typename System::Scalar;
   auto step = tq_step(context.system, past ? *past : d, d, context.initial, h);
-  require_converged(step.report, "TQ step with h = " + to_decimal<T>(h));
+  require_converged(step.report, "TQ step with h = " + to_decimal<T>(h, 17));
   return step.next;
 }
 
@@ -111,7 +111,7 @@ struct QxQTQEquivalenceClaim : Claim<QxQTQEquivalenceClaim> {
     const auto& d = *context.tq;
     PerStepCheck<T> check;
     for (const T& h : context.steps()) {
-      context.report("qxq-tq-equivalence at h = " + to_decimal<T>(h));
+      context.report("qxq-tq-equivalence at h = " + to_decimal<T>(h, 6));
       // A past_discretization makes the TQ steps mismatched: the negative control.
       auto states = tq_trajectory(context.system, context.tq_past ? *context.tq_past : d, d, context.initial, h,
                                   compared_steps);
@@ -235,17 +235,17 @@ struct ExistenceUniquenessClaim : Claim<ExistenceUniquenessClaim> {
     std::string failure, second_point;
     nlohmann::json uniqueness = nlohmann::json::array();
     for (const T& h : context.steps()) {
-      context.report("existence-uniqueness: F_h(v) and its uniqueness at h = " + to_decimal<T>(h));
+      context.report("existence-uniqueness: F_h(v) and its uniqueness at h = " + to_decimal<T>(h, 6));
       auto step = tq_step(context.system, *context.tq, context.initial, h);
       if (!step.report.converged && failure.empty())
-        failure = "no critical point found from the h = 0 solution at h = " + to_decimal<T>(h) +
+        failure = "no critical point found from the h = 0 solution at h = " + to_decimal<T>(h, 17) +
                   ": " + step.report.failure;
       displacement.push_back(state_distance(step.next, context.initial));
       if (!step.report.converged) continue;
       auto probe = probe_uniqueness(context, step.next, h);
       const bool unique = probe.largest_distance <= probe.tolerance;
       if (!unique && second_point.empty())
-        second_point = "a second critical point near the diagonal at h = " + to_decimal<T>(h) + ": " +
+        second_point = "a second critical point near the diagonal at h = " + to_decimal<T>(h, 17) + ": " +
                        format_scalar(probe.largest_distance) + " from F_h(v) (rounding " +
                        format_scalar(probe.tolerance) + ")";
       uniqueness.push_back({{"h", to_decimal<T>(h)},

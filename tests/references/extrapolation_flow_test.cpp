@@ -181,5 +181,27 @@ TEST(ExtrapolationFlow, PendulumTo1e50At200BitsOverTenTimeUnits) {
   ::testing::Test::RecordProperty("highest_column", std::to_string(result.report.highest_column));
 }
 
+// The extrapolation flow fails as fast: y'' = −10⁸ y to t = 10⁴ would need millions of
+// steps; it stops at the thousandth, having evaluated the field for those only.
+TEST(ExtrapolationFlowFailFast, AMotionTooFastForItsTFailsAfterAThousandSteps) {
+  long evaluations = 0;
+  auto field = [&](const Vector<double, 2>& y) {
+    ++evaluations;
+    return Vector<double, 2>(y[1], -1e8 * y[0]);
+  };
+  try {
+    gragg_bulirsch_stoer<double, 2>(field, Vector<double, 2>(1.0, 0.0), 1e4, 1e-10);
+    ADD_FAILURE() << "reached t = 1e4";
+  } catch (const std::runtime_error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("flow would need about"), std::string::npos) << message;
+    EXPECT_NE(message.find("(1000 steps reached t = "), std::string::npos) << message;
+  }
+  // About 65 evaluations a step here: a thousand steps, not the limit's hundred thousand.
+  EXPECT_LT(evaluations, 200000);
+  evaluations = 0;
+  EXPECT_NO_THROW((gragg_bulirsch_stoer<double, 2>(field, Vector<double, 2>(1.0, 0.0), 1e-2, 1e-10)));
+}
+
 }  // namespace
 }  // namespace vivv

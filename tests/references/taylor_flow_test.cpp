@@ -283,5 +283,27 @@ TEST(TaylorFlowTest, NegativeControlWrongSeriesCoefficientIsCaught) {
   }
 }
 
+// A motion too fast for its T fails after a thousand steps, saying how many it would need,
+// instead of running to the step limit: the pendulum with k = 10⁸ (period 6·10⁻⁴) over
+// T = 10⁴ needs some 10⁸ steps. Negative control: the same flow reaches a T it can.
+TEST(TaylorFlowTest, AMotionTooFastForItsTFailsAfterAThousandSteps) {
+  Pendulum<double> fast;
+  fast.k = 1e8;
+  TaylorFlow<Pendulum<double>> flow(fast, 1e-12);
+  State<double, 1> start = state1<double>(1.0, 0.0);
+  try {
+    flow.advance(start, 1e4);
+    ADD_FAILURE() << "reached t = 1e4";
+  } catch (const std::runtime_error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("the Taylor-series flow would need about"), std::string::npos) << message;
+    EXPECT_NE(message.find("(1000 steps reached t = "), std::string::npos) << message;
+    EXPECT_NE(message.find("take a smaller T"), std::string::npos) << message;
+  }
+  EXPECT_LT(flow.report().steps, 1100);
+  TaylorFlow<Pendulum<double>> reachable(fast, 1e-12);
+  EXPECT_NO_THROW(reachable.advance(start, 1e-2));
+}
+
 }  // namespace
 }  // namespace vivv
