@@ -617,7 +617,7 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   if (reader.has("digits")) {
     if (spec.scalar != "mpfr")
       reader.fail("digits", "sets the MPFR working precision, and this case runs in \"" + spec.scalar + "\"");
-    spec.digits = reader.integer("digits", 20, 2000);
+    spec.digits = reader.integer("digits", 20, maximum_digits);
   }
   spec.discretization = read_discretization(reader.object("discretization"), spec.dimension, spec.parameters);
   if (reader.has("past_discretization"))
@@ -699,9 +699,10 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
       if (spec.scalar != "mpfr")
         throw CaseError(file, where, "precision-leak runs the case again at twice its digits: it needs \"scalar\": "
                                      "\"mpfr\", not \"" + spec.scalar + "\"");
-      if (spec.digits > 1000)
+      if (2 * spec.digits > maximum_digits)
         throw CaseError(file, where, "precision-leak runs the case again at twice its digits, and digits " +
-                                         std::to_string(spec.digits) + " would make that more than 2000");
+                                         std::to_string(spec.digits) + " would make that more than " +
+                                         std::to_string(maximum_digits));
       if (spec.past_discretization)
         throw CaseError(file, where, "precision-leak measures the local defect of one consistent method, and "
                                      "past_discretization makes a mismatched one");

@@ -140,7 +140,7 @@ RunOptions parse_run_options(const std::vector<std::string>& args) {
       return args[++i];
     };
     if (arg == "--out") options.out = value();
-    else if (arg == "--digits") options.digits = parse_integer(arg, value(), 20, 2000);
+    else if (arg == "--digits") options.digits = parse_integer(arg, value(), 20, maximum_digits);
     else if (arg == "--scalar") {
       options.scalar = value();
       const auto& names = scalar_names();

@@ -237,9 +237,9 @@ ExtrapolationSolution<T, d> gragg_bulirsch_stoer(F f, const Vector<T, d>& y0, co
     const T remaining = t_end - t;
     if (h <= 8 * epsilon<T>() * max(abs(t), abs(t_end))) {
       throw std::runtime_error(
-          "gragg_bulirsch_stoer: step size underflow (h = " + to_decimal<T>(h) +
-          ") at t = " + to_decimal<T>(t) + " on the way to " + to_decimal<T>(t_end) +
-          ", tolerance " + to_decimal<T>(tol));
+          "gragg_bulirsch_stoer: step size underflow (h = " + to_decimal<T>(h, 6) +
+          ") at t = " + to_decimal<T>(t, 17) + " on the way to " + to_decimal<T>(t_end, 17) +
+          ", tolerance " + to_decimal<T>(tol, 3));
     }
     if (h * T(101) / 100 >= abs(remaining)) {
       h = abs(remaining);
@@ -345,8 +345,8 @@ ExtrapolationSolution<T, d> gragg_bulirsch_stoer(F f, const Vector<T, d>& y0, co
       ++report.rejected_steps;
       if (++consecutive_rejections > options.max_consecutive_rejections) {
         throw std::runtime_error("gragg_bulirsch_stoer: " + std::to_string(consecutive_rejections) +
-                                 " rejected steps in a row at t = " + to_decimal<T>(t) + " (h = " +
-                                 to_decimal<T>(h) + "): the local tolerance " + to_decimal<T>(tol) +
+                                 " rejected steps in a row at t = " + to_decimal<T>(t, 17) + " (h = " +
+                                 to_decimal<T>(h, 6) + "): the local tolerance " + to_decimal<T>(tol, 3) +
                                  " is probably below the round-off floor of " + scalar_name<T>() +
                                  " at " + std::to_string(precision_bits<T>()) + " bits");
       }
