@@ -255,6 +255,7 @@ struct CaseContext {
       initial.q[i] = from_decimal<T>(spec.q[i]);
       initial.w[i] = from_decimal<T>(spec.w[i]);
     }
+    reference.set_progress(flow_progress("reference flow"));
     report("reference flow to T = " + spec.final_time);
     final_state = reference.advance(initial, final_time);
     if (spec.discretization.formalism == "map") map = make_map();
@@ -360,10 +361,21 @@ struct CaseContext {
   std::function<void(int, int)> step_progress(const std::string& what) const {
     if (!progress) return {};
     using clock = std::chrono::steady_clock;
-    return [this, what, last = clock::now()](int k, int steps) mutable {
+    return [print = progress, what, last = clock::now()](int k, int steps) mutable {
       if (clock::now() - last < std::chrono::seconds(5)) return;
       last = clock::now();
-      report(what + ": step " + std::to_string(k) + " of " + std::to_string(steps));
+      print(what + ": step " + std::to_string(k) + " of " + std::to_string(steps));
+    };
+  }
+
+  // The same for a flow integrating towards a time: "<what> at t = … of …".
+  std::function<void(const T&, const T&)> flow_progress(const std::string& what) const {
+    if (!progress) return {};
+    using clock = std::chrono::steady_clock;
+    return [print = progress, what, last = clock::now()](const T& reached, const T& target) mutable {
+      if (clock::now() - last < std::chrono::seconds(5)) return;
+      last = clock::now();
+      print(what + " at t = " + to_decimal<T>(reached, 6) + " of " + to_decimal<T>(target, 6));
     };
   }
 };

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cmath>
+#include <functional>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
@@ -95,6 +96,7 @@ class ReferenceFlow {
     if constexpr (closed_form) {
       if (checks_by_taylor()) {
         TaylorFlow<System> check(system_, check_local_tolerance());
+        check.integrator().on_progress = progress_;
         return state_distance<T, n>(advance(start, t), check.advance(start, t));
       }
     }
@@ -153,6 +155,10 @@ class ReferenceFlow {
   // a closed form's few ulps rest on the unit tests at higher precision.
   T check_tolerance() const { return check_local_tolerance() * 1000000; }
 
+  // `report(reached, target)` after every step of a Taylor cross-check (a closed form itself
+  // has no steps to report).
+  void set_progress(std::function<void(const T&, const T&)> report) { progress_ = std::move(report); }
+
   // Smallest local tolerance of the check: 1000 ε (100 ε is reachable, but slowly).
   static T check_floor() { return 1000 * epsilon<T>(); }
 
@@ -187,6 +193,7 @@ class ReferenceFlow {
   System system_;
   T requested_tolerance_;
   T effective_tolerance_;
+  std::function<void(const T&, const T&)> progress_;
 };
 
 }  // namespace vivv

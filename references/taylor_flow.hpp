@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -81,6 +82,9 @@ class TaylorIntegrator {
   // thousand steps (the message says how many it would take). A dense trajectory keeps every
   // step's polynomial: a million steps of order 60 in 2 coordinates are gigabytes in MPFR.
   long max_steps = 1000000;
+  // Called after every step of advance and extend with the time reached and the target (the
+  // harness throttles it into progress lines); empty: nothing is called.
+  std::function<void(const T& reached, const T& target)> on_progress;
 
  private:
   // ρ e^{−2} e^{−0.7/(p−1)} from the current expansion; +∞ when the last two orders vanish.
@@ -232,6 +236,7 @@ std::vector<T> TaylorIntegrator<T>::advance(std::vector<T> y, const T& t) {
       horner(y[m + i], [&](int k) -> const T& { return expansion_.velocity(i, k); }, length);
     }
     now = last ? t : T(now + length);
+    if (on_progress) on_progress(now, t);
   }
   return y;
 }
@@ -249,6 +254,7 @@ void TaylorIntegrator<T>::extend(TaylorTrajectory<T>& trajectory, const T& t_end
                                trajectory.direction(), remaining, false);
     std::vector<T> end = TaylorTrajectory<T>::evaluate(taken, taken.length);
     trajectory.append(std::move(taken), std::move(end));
+    if (on_progress) on_progress(trajectory.end_time(), t_end);
   }
 }
 

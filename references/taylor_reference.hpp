@@ -18,6 +18,7 @@
 
 #include <cmath>
 #include <iomanip>
+#include <functional>
 #include <list>
 #include <memory>
 #include <mutex>
@@ -87,6 +88,10 @@ class TaylorReference {
   // steps) at step tolerance check_step_tolerance().
   T estimate_error(const State<T, n>& start, const T& t) const {
     TaylorFlow<System> check(system_, check_step_tolerance());
+    {
+      std::lock_guard<std::mutex> lock(shared_->mutex);
+      check.integrator().on_progress = shared_->flow.integrator().on_progress;
+    }
     return state_distance<T, n>(advance(start, t), check.advance(start, t));
   }
 
@@ -115,6 +120,13 @@ class TaylorReference {
            short_decimal(check_step_tolerance()) +
            " (order " + std::to_string(taylor_order_for(check_step_tolerance())) +
            ") and reports the max-norm difference";
+  }
+
+  // `report(reached, target)` after every step of the flow and of its check (copies of this
+  // reference share it).
+  void set_progress(std::function<void(const T&, const T&)> report) const {
+    std::lock_guard<std::mutex> lock(shared_->mutex);
+    shared_->flow.integrator().on_progress = std::move(report);
   }
 
   // Work so far: steps, order, multiply-adds of the cached trajectories.
