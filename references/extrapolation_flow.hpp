@@ -237,9 +237,10 @@ ExtrapolationSolution<T, d> gragg_bulirsch_stoer(F f, const Vector<T, d>& y0, co
     const T remaining = t_end - t;
     if (h <= 8 * epsilon<T>() * max(abs(t), abs(t_end))) {
       throw std::runtime_error(
-          "gragg_bulirsch_stoer: step size underflow (h = " + to_decimal<T>(h, 6) +
-          ") at t = " + to_decimal<T>(t, 17) + " on the way to " + to_decimal<T>(t_end, 17) +
-          ", tolerance " + to_decimal<T>(tol, 3));
+          "the extrapolation (Gragg–Bulirsch–Stoer) flow's step fell to h = " + to_decimal<T>(h, 6) +
+          " at t = " + to_decimal<T>(t, 17) + " on the way to " + to_decimal<T>(t_end, 17) + " (tolerance " +
+          to_decimal<T>(tol, 3) + "): the solution is probably singular there (a collision, a blow-up, or a "
+          "Lagrangian that stops being regular along it)");
     }
     if (h * T(101) / 100 >= abs(remaining)) {
       h = abs(remaining);

@@ -88,7 +88,8 @@ class TaylorIntegrator {
 
  private:
   // ρ e^{−2} e^{−0.7/(p−1)} from the current expansion; +∞ when the last two orders vanish.
-  T jorba_zou_step() const;
+  // `at`: the time of the expansion, for the message when the step underflows.
+  T jorba_zou_step(const T& at) const;
 
   // Throws when the `steps` steps taken from `from` reached `now` on the way to `target` at a
   // pace that would need more than max_steps (checked from the thousandth step on).
@@ -131,7 +132,7 @@ bool abs_less(const T& a, const T& b) {
 // is then a double rounded into T — any step is valid, and end times are
 // hit exactly by shortening the last step.
 template <class T>
-T TaylorIntegrator<T>::jorba_zou_step() const {
+T TaylorIntegrator<T>::jorba_zou_step(const T& at) const {
   using boost::multiprecision::isfinite;
   using std::isfinite;
   using taylor_flow_detail::abs_less;
@@ -160,7 +161,9 @@ T TaylorIntegrator<T>::jorba_zou_step() const {
   const double log_scale = abs_less(*state_norm, T(1)) ? 0.0 : log_abs(*state_norm);
   const double step = vivv::jorba_zou_step(log_scale, log_abs(*norm_previous), log_abs(*norm_last), p);
   if (!(step > 0))
-    throw std::runtime_error("TaylorIntegrator: step size underflow (Taylor coefficients too large)");
+    throw std::runtime_error("the Taylor-series flow's step fell to zero at t = " + to_decimal<T>(at, 17) +
+                             " (its Taylor coefficients overflow): the solution is probably singular there "
+                             "(a collision, a blow-up, or a Lagrangian that stops being regular along it)");
   return T(step);
 }
 
@@ -175,7 +178,7 @@ TaylorStep<T> TaylorIntegrator<T>::step(const std::vector<T>& y, const T& t, int
     throw std::invalid_argument("TaylorIntegrator::step: state of the wrong size");
   ++report_.steps;
   expansion_.expand(y.data(), y.data() + m, order_);
-  T length = jorba_zou_step();
+  T length = jorba_zou_step(t);
   if (clip ? !(length < abs(limit)) : !isfinite(length)) length = abs(limit);
   if (!isfinite(length))
     throw std::runtime_error("TaylorIntegrator: unbounded step with no end time to stop at");
@@ -226,7 +229,7 @@ std::vector<T> TaylorIntegrator<T>::advance(std::vector<T> y, const T& t) {
     check_pace(taken++, T(0), now, t);
     const T remaining = t - now;
     expansion_.expand(y.data(), y.data() + m, order_);
-    length = jorba_zou_step();
+    length = jorba_zou_step(now);
     const bool last = !(length < abs(remaining));
     if (last) length = remaining;
     if (t < 0 && !last) length = -length;
