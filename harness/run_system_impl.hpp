@@ -41,6 +41,8 @@ bool first_step_converges(const CaseContext<System>& context, const typename Sys
     return del_step(context.system, context.scheme, q0, q1, h).second.converged;
   } catch (const SolverError&) {
     return false;
+  } catch (const SingularLagrangianError&) {  // an iterate where L is not regular
+    return false;
   } catch (const std::domain_error&) {  // an iterate left the Lagrangian's domain
     return false;
   }
