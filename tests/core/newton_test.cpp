@@ -17,7 +17,7 @@ TYPED_TEST_SUITE(NewtonTest, testing::Scalars, testing::ScalarNames);
 // arctan x = 0: Newton converges from |x0| below about 1.39 and runs away from above it
 // (each iterate larger in size than the one before, alternating in sign).
 template <class T>
-SolveReport<T> solve_arctan(T& x, int* evaluations = nullptr) {
+SolveReport<T> solve_arctan(T& x, int* evaluations = nullptr, const NewtonOptions& options = {}) {
   Vector<T, 1> at;
   at[0] = x;
   auto report = newton_solve<T, 1>(at, [&](const Vector<T, 1>& v, Vector<T, 1>& residual, Matrix<T, 1, 1>& jacobian) {
@@ -25,7 +25,7 @@ SolveReport<T> solve_arctan(T& x, int* evaluations = nullptr) {
     if (evaluations) ++*evaluations;
     residual[0] = atan(v[0]);
     jacobian(0, 0) = 1 / (1 + v[0] * v[0]);
-  });
+  }, options);
   x = at[0];
   return report;
 }
@@ -56,18 +56,9 @@ TYPED_TEST(NewtonTest, StopsAtTheFirstSignOfDivergence) {
   NewtonOptions patient;
   patient.runaway_factor = 1 << 30;
   patient.stagnation_limit = 1000;
-  Vector<T, 1> at;
-  at[0] = 3;
+  T patient_x = 3;
   int patient_evaluations = 0;
-  auto patient_report = newton_solve<T, 1>(
-      at,
-      [&](const Vector<T, 1>& v, Vector<T, 1>& residual, Matrix<T, 1, 1>& jacobian) {
-        using std::atan;
-        ++patient_evaluations;
-        residual[0] = atan(v[0]);
-        jacobian(0, 0) = 1 / (1 + v[0] * v[0]);
-      },
-      patient);
+  auto patient_report = solve_arctan(patient_x, &patient_evaluations, patient);
   EXPECT_FALSE(patient_report.converged);
   EXPECT_GT(patient_evaluations, evaluations);
 }
