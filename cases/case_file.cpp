@@ -743,10 +743,35 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
     Reader xfail = reader.object("xfail");
     for (const auto& id : spec.claims) {
       if (!xfail.has(id)) continue;
-      std::string reason = xfail.string(id);
-      if (reason.find_first_not_of(" \t\n") == std::string::npos)
+      // "reason", or {"reason": "...", "observed_order": ["low", "high"]}: the failure it expects.
+      ExpectedFailure expected;
+      if (xfail.get(id).is_object()) {
+        Reader entry = xfail.object(id);
+        expected.reason = entry.string("reason");
+        if (entry.has("observed_order")) {
+          const std::vector<std::string> range = entry.decimals("observed_order", 2);
+          for (const auto& end : range)
+            if (!(std::fabs(*decimal_value_of(end)) <= 1000))
+              entry.fail("observed_order",
+                         "expected orders in [-1000, 1000], got \"" + echo(end) + "\"");
+          if (!(*decimal_value_of(range[0]) <= *decimal_value_of(range[1])))
+            entry.fail("observed_order", "expected [low, high] with low <= high, got [\"" +
+                                             echo(range[0]) + "\", \"" + echo(range[1]) + "\"]");
+          expected.observed_order = std::make_pair(range[0], range[1]);
+        }
+        entry.finish();
+      } else if (xfail.get(id).is_string()) {
+        expected.reason = xfail.string(id);
+      } else {
+        xfail.fail(id,
+                   "expected the reason the claim is known to fail, or {\"reason\": \"...\", "
+                   "\"observed_order\": "
+                   "[\"low\", \"high\"]}, got " +
+                       echo(xfail.get(id)));
+      }
+      if (expected.reason.find_first_not_of(" \t\n") == std::string::npos)
         xfail.fail(id, "expected the reason the claim is known to fail, got an empty string");
-      spec.xfail[id] = reason;
+      spec.xfail[id] = expected;
     }
     xfail.finish();  // an expected failure of a claim the case does not check is an error
   }

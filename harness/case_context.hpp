@@ -335,10 +335,26 @@ struct CaseContext {
 
   // Errors below this are at the floor: a thousand times the larger of the
   // reference tolerance and N_max rounding errors, relative to the state's size.
-  T floor() const {
+  // floors() keeps the two apart (harness/order_fit.hpp, Floor).
+  Floor<T> floors() const {
     using std::max;
-    T scale = max(T(1), max(max_norm<T, n>(initial.q), max_norm<T, n>(initial.w)));
-    return 1000 * max(reference.tolerance(), T(spec.steps.back()) * epsilon<T>()) * scale;
+    const T scale = max(T(1), max(max_norm<T, n>(initial.q), max_norm<T, n>(initial.w)));
+    const T steps = T(spec.steps.back());
+    return {1000 * steps * epsilon<T>() * scale, 1000 * reference.tolerance() * scale,
+            static_cast<long double>(scale), static_cast<long double>(spec.steps.back())};
+  }
+  T floor() const { return floors().value(); }
+
+  // The floor of a quantity the reference does not enter (two discretizations compared, a
+  // displacement F_h(v) − v): rounding only, unless one of the case's TQ discretizations has an
+  // exact part, computed to the reference's tolerance.
+  Floor<T> floors_without_reference() const {
+    Floor<T> f = floors();
+    const auto exact_part = [](const std::optional<TQDiscretization<T>>& d) {
+      return d && (d->psi == CurveFamily::exact || d->lagrangian == TQLagrangianKind::exact);
+    };
+    if (!exact_part(tq) && !exact_part(tq_compare) && !exact_part(tq_past)) f.reference = 0;
+    return f;
   }
 
   // Reference state F_t(initial).

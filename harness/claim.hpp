@@ -20,6 +20,10 @@ namespace vivv {
 
 template <class Derived>
 struct Claim {
+  // Whether a failure of the claim is an order its series' fit shows (so that a known failure
+  // states the range of that order); precision-leak judges floors, not one fitted order.
+  static constexpr bool fails_by_order = true;
+
   // No order: the claim predicts an identity, exactness or an inconsistency.
   template <LagrangianSystem System>
   static std::optional<int> theorem_order(const CaseContext<System>&) {
@@ -50,15 +54,42 @@ std::vector<typename System::Scalar> measure_each_step(const CaseContext<System>
   return values;
 }
 
-// A series over the case's sweep, fitted with its floor and options and judged
-// against `predicted` (none: fitted and shown, not judged).
+// A series over the case's sweep, fitted with `floors` (the case's, reference included, unless
+// given) and its options, and judged against `predicted` (none: fitted and shown, not judged).
 template <LagrangianSystem System>
 Series sweep_series(const CaseContext<System>& context, const std::string& label,
                     const std::vector<typename System::Scalar>& error,
-                    std::optional<OrderPrediction> predicted) {
-  return make_series(label, context.steps(), error, context.floor(),
+                    std::optional<OrderPrediction> predicted,
+                    std::optional<Floor<typename System::Scalar>> floors = std::nullopt) {
+  return make_series(label, context.steps(), error, floors ? *floors : context.floors(),
                      predicted ? std::optional<double>(predicted->order) : std::nullopt,
                      predicted && predicted->exact, context.order_tolerance, context.fit_options);
+}
+
+// Identities judge scaling too: a defect that falls with h like a power of h is truncation,
+// not rounding, whatever its size. Given each h's value and its rounding unit (what one
+// rounding of the computation is worth there), the values more than `above` units at two or
+// more h, each pair of consecutive ones falling at pairwise order >= 1 (in decreasing h), are
+// truncation: the description says so; empty when they are not.
+template <class T>
+std::string truncation_scaling(const std::vector<T>& h, const std::vector<T>& value,
+                               const std::vector<T>& unit, double above) {
+  using std::log;
+  std::vector<std::size_t>
+      resolved;  // indices above the rounding, in the sweep's (decreasing h) order
+  for (std::size_t i = 0; i < value.size(); ++i)
+    if (unit[i] > 0 && value[i] > T(above) * unit[i]) resolved.push_back(i);
+  if (resolved.size() < 2) return "";
+  std::string orders;
+  for (std::size_t k = 0; k + 1 < resolved.size(); ++k) {
+    const std::size_t a = resolved[k], b = resolved[k + 1];
+    const T order = log(T(value[a] / value[b])) / log(T(h[a] / h[b]));
+    if (!(order >= 1)) return "";
+    orders += (orders.empty() ? "" : ", ") + format_scalar(order, 3);
+  }
+  return "at " + std::to_string(resolved.size()) + " step sizes the defect is more than " +
+         format_scalar(above) + " rounding units and falls with h at pairwise orders " + orders +
+         ": a defect that falls like a power of h is truncation, not rounding";
 }
 
 // An identity checked at each h against its own tolerance: the measured values
@@ -69,12 +100,30 @@ struct PerStepCheck {
   std::vector<T> values;
   bool holds = true;
   nlohmann::json rows = nlohmann::json::array();
+  std::string
+      scaling_failure;  // truncation_scaling's finding, when the values fall like a power of h
+  std::string scaling_limit;  // what the scaling test would have caught
+  std::vector<T> tolerances;
+  T smallest_tolerance = 0, largest_tolerance = 0;
+
+  // What the check could have caught: a value above the tolerance at its h.
+  std::string detection_limit() const {
+    if (tolerances.empty()) return "";
+    return "a value above " + format_scalar(smallest_tolerance) +
+           (largest_tolerance > smallest_tolerance ? " … " + format_scalar(largest_tolerance)
+                                                   : std::string()) +
+           " (the tolerance at each h) would have failed" +
+           (scaling_limit.empty() ? "" : "; so would " + scaling_limit);
+  }
 
   // Records `value` at h against `tolerance`; `row` may carry more columns, and
   // `also` a further condition the step must meet (its columns in `row`).
   bool add(const T& h, const T& value, const T& tolerance, nlohmann::json row = nlohmann::json::object(),
            bool also = true) {
     const bool ok = value <= tolerance && also;
+    if (tolerances.empty() || tolerance < smallest_tolerance) smallest_tolerance = tolerance;
+    if (tolerances.empty() || tolerance > largest_tolerance) largest_tolerance = tolerance;
+    tolerances.push_back(tolerance);
     holds = holds && ok;
     values.push_back(value);
     row["h"] = to_decimal<T>(h);
@@ -91,8 +140,10 @@ struct PerStepCheck {
                       const std::string& held, const std::string& failed) const {
     claim.evidence["per_step"] = rows;
     Series series = sweep_series(context, label, values, std::nullopt);
-    series.holds = holds;
-    series.explanation = holds ? held : failed;
+    series.holds = holds && scaling_failure.empty();
+    series.explanation = *series.holds ? held : !holds ? failed : scaling_failure;
+    if (!holds && !scaling_failure.empty()) series.explanation += "; and " + scaling_failure;
+    series.detection_limit = detection_limit();
     claim.series.push_back(series);
     conclude(claim);
   }

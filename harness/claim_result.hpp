@@ -3,7 +3,9 @@
 // the report model, reports/results.hpp.
 #pragma once
 
+#include <cstdio>
 #include <string>
+#include <vector>
 
 #include "reports/results.hpp"
 
@@ -24,12 +26,41 @@ inline void apply_reference_check(std::vector<ClaimResult>& claims, const Refere
   }
 }
 
-// A claim the case marks as a known failure: a failing verdict becomes
-// "xfail", a passing one "xpass" (a known failure that went away must be looked
-// at: it fails the run). "error" stays "error".
-inline void apply_expected_failure(ClaimResult& claim, const std::string& reason) {
+// An order with four significant digits.
+inline std::string order_text(double order) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", order);
+  return buffer;
+}
+
+// A claim the case marks as a known failure: a failing verdict becomes "xfail" when it is the
+// failure the case states (for an order, the decisive series' fitted order inside the stated
+// range), a passing one "xpass" (a known failure that went away must be looked at: it fails the
+// run). Any other failure stays "fail"; "inconclusive" and "error" stay as they are.
+inline void apply_expected_failure(ClaimResult& claim, const ExpectedFailure& expected) {
+  const std::string& reason = expected.reason;
   claim.xfail_reason = reason;
+  if (expected.observed_order)
+    claim.evidence["xfail_expects_observed_order"] = {expected.observed_order->first,
+                                                      expected.observed_order->second};
   if (claim.verdict == "fail") {
+    if (expected.observed_order && !claim.series.empty()) {
+      const Series& decisive = claim.series[static_cast<std::size_t>(claim.decisive_series)];
+      const double low = std::stod(expected.observed_order->first),
+                   high = std::stod(expected.observed_order->second);
+      const bool as_expected = decisive.fit && decisive.fit->ok && decisive.fit->order >= low &&
+                               decisive.fit->order <= high;
+      if (!as_expected) {
+        claim.explanation =
+            "marked as a known failure (" + reason + ") with an observed order in [" +
+            expected.observed_order->first + ", " + expected.observed_order->second +
+            "], but it fails otherwise — " +
+            (decisive.fit && decisive.fit->ok ? "observed order " + order_text(decisive.fit->order)
+                                              : std::string("no observed order")) +
+            ": " + claim.explanation;
+        return;
+      }
+    }
     claim.verdict = "xfail";
     claim.explanation = "expected failure (" + reason + "): " + claim.explanation;
   } else if (claim.verdict == "pass") {

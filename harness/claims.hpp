@@ -73,6 +73,35 @@ void check_declared_orders(const CaseContext<System>& context) {
   }
 }
 
+// A known failure states what it expects (cases/case_file.hpp, ExpectedFailure): a claim that
+// predicts an order fails in a range of observed orders, which the case must give; one that
+// predicts none takes no range. Throws CaseError naming xfail.<claim>.
+template <LagrangianSystem System>
+void check_expected_failures(const CaseContext<System>& context) {
+  for (const auto& [id, expected] : context.spec.xfail) {
+    const std::string field = "xfail." + id;
+    bool fails_by_order = true;
+    std::apply(
+        [&](auto... claim) {
+          ((id == claim.id ? (fails_by_order = claim.fails_by_order, 0) : 0), ...);
+        },
+        ClaimRegistry{});
+    const bool ordered = fails_by_order && theorem_order(id, context).has_value();
+    if (ordered && !expected.observed_order)
+      throw CaseError(context.spec.file, field,
+                      id + " predicts an order for this case, so its known failure must say which: "
+                           "{\"reason\": \"...\", \"observed_order\": [\"low\", \"high\"]}, the "
+                           "range its fitted "
+                           "order falls in (any other failure then fails the run)");
+    if (!ordered && expected.observed_order)
+      throw CaseError(
+          context.spec.file, field + ".observed_order",
+          "a failure of " + id +
+              " in this case is not an observed order (an identity, exactness, "
+              "an inconsistency or a precision leak), so there is no observed order to expect");
+  }
+}
+
 // Evaluates the registered claim `id` on a case.
 template <LagrangianSystem System>
 ClaimResult evaluate_claim(const std::string& id, const CaseContext<System>& context) {

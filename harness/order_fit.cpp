@@ -116,6 +116,12 @@ void drop_plateau(std::vector<LogPoint>& kept, std::vector<DroppedPoint>& droppe
                       "round-off");
       return;
     }
+    if (kept.back().log_error > kept[kept.size() - 2].log_error) {
+      notes.push_back("the error grew at the small-h end (" + numbers + ", error " +
+                      format_from_log(kept.back().log_error) +
+                      "): kept in the fit, as a failure to converge rather than round-off");
+      return;
+    }
     dropped.emplace_back(kept.back().index, "at the floor (plateau: " + numbers + ")");
     kept.pop_back();
   }
@@ -218,11 +224,11 @@ OrderVerdict judge_order(const OrderFit& fit, double predicted, bool exact, doub
     verdict.explanation = "no observed order (" + fit.reason + "): fails";
     return verdict;
   }
+  const std::string interval = "[" + format_number(fit.confidence_low, 4) + ", " +
+                               format_number(fit.confidence_high, 4) + "]";
   const std::string observed = "observed order " + format_number(fit.order, 4) + " (" +
-                               format_number(100 * fit.confidence, 3) + "% interval [" +
-                               format_number(fit.confidence_low, 4) + ", " +
-                               format_number(fit.confidence_high, 4) + "] from " +
-                               std::to_string(fit.used.size()) + " points)";
+                               format_number(100 * fit.confidence, 3) + "% interval " + interval +
+                               " from " + std::to_string(fit.used.size()) + " points)";
   const std::string bound =
       format_number(predicted, 4) + (exact ? " ± " : " − ") + format_number(tolerance, 3);
   const bool fit_agrees = order_agrees(fit.order, predicted, exact, tolerance);
@@ -235,27 +241,65 @@ OrderVerdict judge_order(const OrderFit& fit, double predicted, bool exact, doub
   const std::string finest = "finest pairwise order" + std::string(fit.finest_orders.size() > 1 ? "s " : " ") +
                              finest_text;
   const std::string relation = exact ? "within " : ">= ";
-  verdict.holds = fit_agrees && finest_agree;
-  if (verdict.holds) {
-    verdict.explanation = observed + " " + relation + bound + ", and so " +
-                          (fit.finest_orders.size() > 1 ? "are the " : "is the ") + finest + ": holds";
-  } else if (!fit_agrees && !finest_agree) {
-    verdict.explanation = observed + " and " + finest + " not " + relation + bound + ": fails";
-  } else if (fit_agrees) {
-    verdict.explanation = observed + " " + relation + bound + ", but the " + finest +
-                          " are not: at the small-h end the error does not yet (or no longer) "
-                          "decrease at the predicted rate — a pre-asymptotic sweep (refine it) or "
-                          "a scheme that stops converging: fails";
-  } else {
-    verdict.explanation = observed + " not " + relation + bound + ", although the " + finest +
-                          (fit.finest_orders.size() > 1 ? " are" : " is") +
-                          ": the fit over the asymptotic range disagrees: fails";
+  const double half_width = (fit.confidence_high - fit.confidence_low) / 2;
+  verdict.detection_limit = (exact ? "orders outside " + format_number(predicted - tolerance, 4) +
+                                         " … " + format_number(predicted + tolerance, 4)
+                                   : "orders below " + format_number(predicted - tolerance, 4)) +
+                            " fail; the fit resolves the order to " +
+                            (std::isfinite(half_width) ? "±" + format_number(half_width, 2)
+                                                       : std::string("no interval (2 points)")) +
+                            " at " + format_number(100 * fit.confidence, 3) + "%";
+  const std::string excluded_note =
+      exact && std::isfinite(fit.confidence_low) &&
+              (predicted < fit.confidence_low || predicted > fit.confidence_high)
+          ? "; note: the fit's " + format_number(100 * fit.confidence, 3) +
+                "% interval excludes the predicted " + format_number(predicted, 4) +
+                " (the sweep is not fully asymptotic: --refine extends it)"
+          : std::string();
+  if (!(fit_agrees && finest_agree)) {
+    if (!fit_agrees && !finest_agree) {
+      verdict.explanation = observed + " and " + finest + " not " + relation + bound + ": fails";
+    } else if (fit_agrees) {
+      verdict.explanation =
+          observed + " " + relation + bound + ", but the " + finest +
+          " are not: at the small-h end the error does not yet (or no longer) "
+          "decrease at the predicted rate — a pre-asymptotic sweep (refine it) or "
+          "a scheme that stops converging: fails";
+    } else {
+      verdict.explanation = observed + " not " + relation + bound + ", although the " + finest +
+                            (fit.finest_orders.size() > 1 ? " are" : " is") +
+                            ": the fit over the asymptotic range disagrees: fails";
+    }
+    verdict.explanation += excluded_note;
+    return verdict;
   }
-  if (exact && std::isfinite(fit.confidence_low) &&
-      (predicted < fit.confidence_low || predicted > fit.confidence_high))
-    verdict.explanation += "; note: the fit's " + format_number(100 * fit.confidence, 3) +
-                           "% interval excludes the predicted " + format_number(predicted, 4) +
-                           " (the sweep is not fully asymptotic: --refine extends it)";
+  // The point estimate and the finest orders agree. The interval must also exclude p − 1 (and
+  // p + 1 for an exact p): the fit must tell the predicted order from the next lower integer
+  // order (and higher), or a method one order short could pass on a fit that cannot tell them
+  // apart ("observed 4.10, 95% interval [−9.06, 17.26] from 3 points ≥ 2 − 0.2" once passed).
+  const bool resolves_lower = fit.confidence_low > predicted - 1;
+  const bool resolves_higher = !exact || fit.confidence_high < predicted + 1;
+  if (!(resolves_lower && resolves_higher)) {
+    verdict.inconclusive = true;
+    verdict.to_decide =
+        "more step sizes in the asymptotic range (--refine, or a sweep extended to smaller h) "
+        "until the interval excludes " +
+        format_number(predicted - 1, 4) +
+        (exact ? " and " + format_number(predicted + 1, 4) : std::string());
+    verdict.explanation =
+        observed + " " + relation + bound + ", and so " +
+        (fit.finest_orders.size() > 1 ? "are the " : "is the ") + finest + ", but the interval " +
+        (std::isfinite(half_width)
+             ? "contains " + format_number(resolves_lower ? predicted + 1 : predicted - 1, 4)
+             : std::string("is unbounded with two points")) +
+        ": the fit cannot tell the predicted order from its neighbour; to decide: " +
+        verdict.to_decide;
+    return verdict;
+  }
+  verdict.holds = true;
+  verdict.explanation = observed + " " + relation + bound + ", and so " +
+                        (fit.finest_orders.size() > 1 ? "are the " : "is the ") + finest +
+                        ": holds" + excluded_note;
   return verdict;
 }
 

@@ -35,9 +35,11 @@ struct FitOptions {
   double plateau_fraction = 0.25;
   // ... the rest clearly converges, median p_rest >= plateau_minimum_order ...
   double plateau_minimum_order = 0.5;
-  // ... and e_last <= plateau_floor_factor · floor. A plateau far above the stated floor is a
-  // failure to converge (an inconsistent scheme), not round-off: it stays in the fit, with a note.
-  double plateau_floor_factor = 1e6;
+  // ... and e_last <= plateau_floor_factor · floor, and e_last did not grow. A plateau further
+  // above the floor, or an error that grew, is a failure to converge (an inconsistent scheme, a
+  // wrong limit), not round-off: it stays in the fit, with a note. The floor is already a thousand
+  // times the rounding a correct method shows, so ten times it is 10^4 times that rounding.
+  double plateau_floor_factor = 10;
   // Two-sided confidence level of [confidence_low, confidence_high].
   double confidence = 0.95;
   // The verdict also looks at this many pairwise orders at the small-h end of the fit.
@@ -48,10 +50,49 @@ struct FitOptions {
   double asymptote_tolerance = 0;
 };
 
-// The comparison of an observed order with a prediction.
+// The comparison of an observed order with a prediction: holds, fails, or (inconclusive) the
+// evidence cannot decide, with what would decide it.
 struct OrderVerdict {
   bool holds = false;
+  bool inconclusive = false;
+  std::string to_decide;
   std::string explanation;
+  std::string detection_limit;  // the orders that would have failed and the fit's resolution
+};
+
+// Where a series' floor comes from. Below `rounding` an error may be the working precision's
+// rounding over N_max steps (1000·N_max·ε·scale); below `reference` it may be the reference's own
+// error (1000·tolerance·scale). The floor is the larger; an error "vanishes to working precision"
+// only at the rounding level rounding/1000, and only when the reference is not the limit.
+template <class T>
+struct Floor {
+  T rounding = 0;
+  T reference = 0;
+  long double scale = 1;  // the state's size and any scaling of the series (e.g. 1/h^(r+1))
+  long double n_max = 1;  // the sweep's largest step count
+
+  T value() const { return rounding > reference ? rounding : reference; }
+  bool reference_limited() const { return reference > rounding; }
+  T rounding_level() const { return rounding / 1000; }
+  // The same floor for a series scaled by 1/divisor.
+  Floor scaled_down(const T& divisor) const {
+    return {rounding / divisor, reference / divisor, scale / static_cast<long double>(divisor),
+            n_max};
+  }
+  // MPFR decimal digits that put this floor a thousand times below `error`: with D digits the
+  // reference is promised to 10^(10 − D) (ten guard digits) and N steps round to about
+  // 2N·10^(−D), so the floor is 1000·max(10^(10 − D), 2N·10^(−D))·scale.
+  int digits_for(const T& error) const {
+    const long double log10_error = static_cast<long double>(log10_of(error));
+    return static_cast<int>(
+        std::ceil(std::log10(1e6L * std::max(1e10L, 2 * n_max) * scale) - log10_error));
+  }
+
+ private:
+  static T log10_of(const T& x) {
+    using std::log10;
+    return log10(x);
+  }
 };
 
 // One point of a sweep in logarithms, as the statistics see it.

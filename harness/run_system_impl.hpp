@@ -89,59 +89,6 @@ std::string first_step_probe(const CaseContext<System>& context, int beyond = 10
          std::to_string(N) + ": no step size tried converged";
 }
 
-// A precision too low for the sweep: a judged series with fewer than two errors above its
-// floor, the others between the floor and the rounding level floor/1000 (errors at the
-// rounding level vanish to working precision, which a lower bound on an order accepts).
-// There the verdict would rest on rounding, not on the method: bad input naming the series
-// and the MPFR digits that put the floor a thousand times below its smallest error (a lower
-// bound: an error the rounding still dominates may be larger than the method's own).
-template <LagrangianSystem System>
-void check_precision_resolves(const CaseContext<System>& context, const std::vector<ClaimResult>& claims) {
-  using T = typename System::Scalar;
-  using std::log10, std::ceil, std::max;
-  const T unit_floor = context.floor();  // the case's floor: 1000·max(tolerance, N·ε)·scale
-  std::string first;  // the first unresolved series, described
-  int needed = 0;     // the digits every unresolved series needs
-  int unresolved = 0;
-  for (const auto& claim : claims)
-    for (const auto& series : claim.series) {
-      if (!series.predicted_order || series.error.empty()) continue;
-      const T floor = from_decimal<T>(series.floor);
-      int above = 0;
-      T largest_at_floor = 0, smallest = 0;
-      for (const auto& text : series.error) {
-        const T e = from_decimal<T>(text);
-        if (e > floor) ++above;
-        else largest_at_floor = max(largest_at_floor, e);
-        if (e > 0 && (smallest == 0 || e < smallest)) smallest = e;
-      }
-      if (above >= 2 || largest_at_floor <= floor / 1000) continue;
-      // In MPFR with D digits the floor is 1000·max(10^(10 − D), N·2·10^(−D))·scale (the
-      // reference keeps ten guard digits); this series' floor is `factor` times the case's.
-      const double factor = static_cast<double>(floor / unit_floor);
-      const double scale = static_cast<double>(
-          unit_floor / (1000 * max(context.reference.tolerance(), T(context.spec.steps.back()) * epsilon<T>())));
-      const double n_max = context.spec.steps.back();
-      const int digits = static_cast<int>(
-          ceil(log10(1000 * std::max(1e10, 2 * n_max) * scale * factor / static_cast<double>(smallest)))) + 3;
-      needed = std::max(needed, digits);
-      if (unresolved++ == 0)
-        first = claim.id + " / " + series.label + " has " + std::to_string(above) + " of " +
-                std::to_string(series.error.size()) + " errors above its round-off floor " + format_scalar(floor) +
-                " and the others between the floor and the rounding level (largest " +
-                format_scalar(largest_at_floor) + ", smallest error " + format_scalar(smallest) + ")";
-    }
-  if (unresolved == 0) return;
-  const std::string digits = std::to_string(needed);
-  throw CaseError(context.spec.file, is_mpfr_v<T> ? "digits" : "scalar",
-                  "the precision is too low for this sweep: " + first +
-                      (unresolved > 1 ? " (and " + std::to_string(unresolved - 1) + " more series)" : "") +
-                      ", so no order can be measured from it: at least " + digits +
-                      " decimal digits are needed to put the floor a thousand times below the smallest error of "
-                      "every such series (scalar \"mpfr\", \"digits\": " + digits + ", or --scalar mpfr --digits " +
-                      digits + "; more if the errors, once resolved, fall further), or take larger steps");
-}
-
 template <LagrangianSystem System>
 void run_on_system(const System& system, CaseSpec& spec, CaseResult& result, bool refine,
                    const std::function<void(const std::string&)>& progress) {
@@ -153,6 +100,7 @@ void run_on_system(const System& system, CaseSpec& spec, CaseResult& result, boo
     if (refine) context.fit_options.asymptote_tolerance = context.order_tolerance / 4;
     if (round == 0) {
       check_declared_orders(context);
+      check_expected_failures(context);
       check_motion_above_floor(context);
       result.reference_method = context.reference.method();
       result.reference_tolerance = to_decimal<T>(context.reference.tolerance());
@@ -180,7 +128,6 @@ void run_on_system(const System& system, CaseSpec& spec, CaseResult& result, boo
         throw explained;
       }
     }
-    check_precision_resolves(context, result.claims);
     if (!refine) break;
     // --refine: halve h (double N) until every order-fitted series settles, within the budget.
     auto unsettled = unsettled_series(result.claims, context.order_tolerance);

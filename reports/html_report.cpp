@@ -41,6 +41,7 @@ pre { background: var(--panel); padding: 8px 10px; overflow-x: auto; border-radi
 .v-error { color: var(--error); background: var(--error-bg); border-color: #f0c36b; }
 .v-xfail { color: #4b5563; background: #eef0f3; border-color: #b8bec8; }
 .v-xpass { color: var(--fail); background: var(--fail-bg); border-color: #f2a3ad; border-style: dashed; }
+.v-inconclusive { color: #5b2a86; background: #efe4fa; border-color: #c3a3e3; }
 .note-cell { font-size: 12px; color: var(--muted); }
 .summary .verdict { font-size: 15px; padding: 4px 14px; }
 table { border-collapse: collapse; }
@@ -102,11 +103,12 @@ std::string decimal_html(const std::string& decimal) {
 }
 
 std::string verdict_badge(const std::string& verdict) {
-  std::string mark = verdict == "pass"    ? "&#10003; pass"
-                     : verdict == "fail"  ? "&#10007; FAIL"
-                     : verdict == "xfail" ? "&#8856; xfail"
-                     : verdict == "xpass" ? "&#10007; XPASS"
-                                          : "&#9888; ERROR";
+  std::string mark = verdict == "pass"           ? "&#10003; pass"
+                     : verdict == "fail"         ? "&#10007; FAIL"
+                     : verdict == "xfail"        ? "&#8856; xfail"
+                     : verdict == "xpass"        ? "&#10007; XPASS"
+                     : verdict == "inconclusive" ? "&#63; INCONCLUSIVE"
+                                                 : "&#9888; ERROR";
   return "<span class=\"verdict v-" + escape(verdict) + "\" data-verdict=\"" + escape(verdict) +
          "\">" + mark + "</span>";
 }
@@ -735,6 +737,9 @@ std::string notes_html(const json& c, const json& claim) {
   if (claim.contains("xfail_reason"))
     notes += "<div class=\"note-cell\" data-note=\"xfail\">known failure: " +
              escape(text_of(claim, "xfail_reason")) + "</div>";
+  if (!text_of(claim, "detection_limit").empty())
+    notes += "<div class=\"note-cell\" data-note=\"detection-limit\">detection limit: " +
+             escape(text_of(claim, "detection_limit")) + "</div>";
   return notes;
 }
 
@@ -786,7 +791,9 @@ std::string series_table(const json& claim) {
     if (pairwise.empty()) out << "&#8212;";
     out << "</td><td>";
     if (s.value("holds", json()).is_boolean())
-      out << verdict_badge(s["holds"].get<bool>() ? "pass" : "fail");
+      out << verdict_badge(s["holds"].get<bool>()           ? "pass"
+                           : s.value("inconclusive", false) ? "inconclusive"
+                                                            : "fail");
     else
       out << "<span class=\"small\">(supporting)</span>";
     out << "</td></tr>";
@@ -842,7 +849,10 @@ std::string claim_section(const json& c, const json& claim, const std::string& k
   out << "</div><div>\n<dl class=\"facts\"><dt>prediction</dt><dd>" << predicted_html(claim)
       << " — " << escape(text_of(claim, "prediction")) << "</dd><dt>observed</dt><dd>"
       << observed_html(claim) << "</dd><dt>verdict</dt><dd>" << verdict_badge(verdict) << " "
-      << escape(text_of(claim, "explanation")) << "</dd></dl>\n";
+      << escape(text_of(claim, "explanation")) << "</dd>";
+  if (!text_of(claim, "detection_limit").empty())
+    out << "<dt>detection limit</dt><dd>" << escape(text_of(claim, "detection_limit")) << "</dd>";
+  out << "</dl>\n";
   out << series_table(claim) << "\n";
   out << "<details><summary>points: h, error, used or dropped</summary>" << points_table(claim)
       << "</details>\n";
@@ -896,7 +906,7 @@ std::string render_html(const json& report) {
   int total = 0;
   std::string counts, badges;
   for (const auto& [verdict, count] : summary.items()) total += count.get<int>();
-  for (const char* verdict : {"pass", "fail", "error", "xfail", "xpass"}) {
+  for (const char* verdict : {"pass", "fail", "inconclusive", "error", "xfail", "xpass"}) {
     const int count = summary.value(verdict, 0);
     counts += std::string(counts.empty() ? "" : ", ") + std::to_string(count) + " " + verdict;
     badges += "<span class=\"verdict v-" + std::string(verdict) + "\" data-count=\"" + verdict + "\">" +

@@ -60,13 +60,15 @@ std::string render_junit(const nlohmann::json& report) {
   std::ostringstream out;
   out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   out << "<testsuites name=\"vivv\" tests=\"" << total << "\" failures=\""
-      << summary.value("fail", 0) + summary.value("xpass", 0) << "\" errors=\"" << summary.value("error", 0)
-      << "\" skipped=\"" << summary.value("xfail", 0) << "\">\n";
+      << summary.value("fail", 0) + summary.value("inconclusive", 0) + summary.value("xpass", 0)
+      << "\" errors=\"" << summary.value("error", 0) << "\" skipped=\"" << summary.value("xfail", 0)
+      << "\">\n";
   for (const auto& c : report["cases"]) {
     std::string name = c["name"];
     int failures = 0, errors = 0, skipped = 0;
     for (const auto& claim : c["claims"]) {
-      failures += claim["verdict"] == "fail" || claim["verdict"] == "xpass";
+      failures += claim["verdict"] == "fail" || claim["verdict"] == "inconclusive" ||
+                  claim["verdict"] == "xpass";
       errors += claim["verdict"] == "error";
       skipped += claim["verdict"] == "xfail";
     }
@@ -79,11 +81,15 @@ std::string render_junit(const nlohmann::json& report) {
       std::string verdict = claim["verdict"], summary_text = evidence_summary(claim);
       out << "    <testcase classname=\"" << xml_escape(name) << "\" name=\""
           << xml_escape(claim["id"].get<std::string>()) << "\">\n";
-      if (verdict == "fail" || verdict == "error" || verdict == "xpass") {
+      if (verdict == "fail" || verdict == "inconclusive" || verdict == "error" ||
+          verdict == "xpass") {
+        // An inconclusive claim fails the run like a failure; its message says it is inconclusive.
         const char* element = verdict == "error" ? "error" : "failure";
+        std::string message = string_field(claim, "explanation");
+        if (verdict == "inconclusive" && message.rfind("inconclusive:", 0) != 0)
+          message = "inconclusive: " + message;
         out << "      <" << element << " type=\"" << verdict << "\" message=\""
-            << xml_escape(string_field(claim, "explanation")) << "\">" << xml_escape(summary_text)
-            << "</" << element << ">\n";
+            << xml_escape(message) << "\">" << xml_escape(summary_text) << "</" << element << ">\n";
       } else if (verdict == "xfail") {
         out << "      <skipped message=\"xfail: " << xml_escape(string_field(claim, "xfail_reason"))
             << "\"/>\n";

@@ -36,7 +36,12 @@ nlohmann::json series_json(const Series& series) {
       series.predicted_order ? nlohmann::json(*series.predicted_order) : nlohmann::json();
   out["exact_order"] = series.exact_order;
   out["holds"] = series.holds ? nlohmann::json(*series.holds) : nlohmann::json();
+  out["inconclusive"] = series.inconclusive;
+  if (series.inconclusive) out["to_decide"] = series.to_decide;
   out["explanation"] = series.explanation;
+  out["detection_limit"] = series.detection_limit;
+  if (!series.rounding_floor.empty()) out["rounding_floor"] = series.rounding_floor;
+  if (!series.reference_floor.empty()) out["reference_floor"] = series.reference_floor;
   if (series.fit) {
     const OrderFit& fit = *series.fit;
     out["fit_ok"] = fit.ok;
@@ -72,14 +77,18 @@ nlohmann::json case_json(const CaseResult& result) {
                         {"prediction", claim.prediction},
                         {"verdict", claim.verdict},
                         {"explanation", claim.explanation},
+                        {"detection_limit", claim.detection_limit},
+                        {"decisive_series", claim.decisive_series},
                         {"evidence", claim.evidence}};
     if (!claim.xfail_reason.empty()) c["xfail_reason"] = claim.xfail_reason;
     nlohmann::json all_series = nlohmann::json::array();
     for (const auto& series : claim.series) all_series.push_back(series_json(series));
     c["series"] = all_series;
-    // The main series' fields at claim level (docs/case-files.md).
+    // The decisive series' fields at claim level (docs/case-files.md): the main series for a pass,
+    // the series that failed or could not decide otherwise.
     if (!claim.series.empty()) {
-      const nlohmann::json& main = all_series[0];
+      const nlohmann::json& main = all_series[std::min<std::size_t>(
+          static_cast<std::size_t>(claim.decisive_series), all_series.size() - 1)];
       for (const char* key : {"h", "error", "observed_order", "predicted_order", "exact_order",
                               "order_standard_error", "order_confidence_95", "pairwise_orders",
                               "finest_pairwise_orders", "fit_points", "floor"})
@@ -126,12 +135,15 @@ nlohmann::json case_json(const CaseResult& result) {
 }
 
 const std::vector<std::string>& verdict_names() {
-  static const std::vector<std::string> names = {"pass", "fail", "error", "xfail", "xpass"};
+  static const std::vector<std::string> names = {"pass",  "fail",  "inconclusive",
+                                                 "error", "xfail", "xpass"};
   return names;
 }
 
 bool run_succeeded(const nlohmann::json& summary) {
-  return summary.value("fail", 0) + summary.value("error", 0) + summary.value("xpass", 0) == 0;
+  return summary.value("fail", 0) + summary.value("inconclusive", 0) + summary.value("error", 0) +
+             summary.value("xpass", 0) ==
+         0;
 }
 
 std::string summary_text(const nlohmann::json& summary) {
@@ -308,7 +320,8 @@ void check_report_shape(const nlohmann::json& report, const std::string& path) {
       const auto& names = verdict_names();
       if (!claim.contains("verdict") || !claim["verdict"].is_string() ||
           std::find(names.begin(), names.end(), claim["verdict"].get<std::string>()) == names.end())
-        throw ReportError(at + ".verdict: expected one of pass, fail, error, xfail, xpass");
+        throw ReportError(
+            at + ".verdict: expected one of pass, fail, inconclusive, error, xfail, xpass");
       if (claim.contains("xfail_reason") && !claim["xfail_reason"].is_string())
         throw ReportError(at + ".xfail_reason: expected a string");
       if (claim.contains("series") && !claim["series"].is_array())
@@ -437,6 +450,11 @@ void print_claims_table(std::ostream& out, const nlohmann::json& report) {
       if (ordered && !default_tolerance(tolerance)) note = "order tolerance " + tolerance;
       if (claim.contains("xfail_reason"))
         note += (note.empty() ? "" : "; ") + std::string("xfail: ") + claim["xfail_reason"].get<std::string>();
+      // A claim that did not pass names the series that decided it (its numbers are the row's).
+      const nlohmann::json series = claim.value("series", nlohmann::json::array());
+      const std::size_t decisive = claim.value("decisive_series", 0);
+      if (claim.value("verdict", "") != "pass" && series.size() > 1 && decisive < series.size())
+        note += (note.empty() ? "" : "; ") + series[decisive].value("label", std::string());
       rows.push_back({c["name"], claim["id"], claim["verdict"],
                       order_text(claim.value("observed_order", nlohmann::json()), 2),
                       order_text(claim.value("predicted_order", nlohmann::json()), 0) +
@@ -462,6 +480,15 @@ void print_claims_table(std::ostream& out, const nlohmann::json& report) {
     text.erase(text.find_last_not_of(' ') + 1);
     out << text << "\n";
   }
+  // Why each claim that did not pass (or xfail) did not: its explanation, with what would
+  // decide an inconclusive one, so that the console alone says what to do next.
+  for (const auto& c : report["cases"])
+    for (const auto& claim : c["claims"]) {
+      const std::string verdict = claim.value("verdict", "");
+      if (verdict == "pass" || verdict == "xfail") continue;
+      out << c.value("name", std::string()) << " / " << claim.value("id", std::string()) << ": "
+          << verdict << ": " << claim.value("explanation", std::string()) << "\n";
+    }
   for (const auto& c : report["cases"]) {
     const nlohmann::json sweep = c.value("sweep", nlohmann::json::object());
     if (!sweep.value("refine", false)) continue;

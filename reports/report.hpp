@@ -1,4 +1,4 @@
-// The report model and its renderers: report.json (schema "vivv-report/3",
+// The report model and its renderers: report.json (schema "vivv-report/4",
 // documented in reports/SCHEMA.md and reports/schema.json), the console claims
 // table, and the report directory (report.json, report.html, junit.xml).
 #pragma once
@@ -14,7 +14,7 @@
 
 namespace vivv {
 
-inline constexpr const char* report_schema = "vivv-report/3";
+inline constexpr const char* report_schema = "vivv-report/4";
 
 struct RunInfo {
   std::string command_line;

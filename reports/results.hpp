@@ -51,17 +51,30 @@ struct Series {
   std::optional<double> predicted_order;
   bool exact_order = false;        // predicted order is exact, not a lower bound
   std::optional<bool> holds;       // verdict of this series alone
+  // The evidence cannot decide (holds is then false): not yet asymptotic, a floor set by the
+  // reference or the precision, an interval too wide. `to_decide` says what would decide it.
+  bool inconclusive = false;
+  std::string to_decide;
   std::string explanation;
+  // The smallest deviation from the prediction this series would have shown as a failure, in
+  // words: "orders below 1.8 fail; the fit resolves the order to ±0.05" (empty when not judged).
+  std::string detection_limit;
+  // Where the floor comes from: the rounding of the working precision over the sweep, or the
+  // reference's promised accuracy (the larger of the two sets it; both decimal strings).
+  std::string rounding_floor, reference_floor;
 };
 
 struct ClaimResult {
   std::string id;
   std::string source;      // where the theory states it (paper / Marsden–West)
   std::string prediction;  // what the theory predicts, in words
-  // "pass", "fail", "error" (the measurement cannot be trusted), or for a claim
-  // the case marks as a known failure "xfail" (it failed) / "xpass" (it passed).
+  // "pass", "fail", "inconclusive" (the evidence cannot decide: `explanation` says what would),
+  // "error" (the measurement cannot be trusted), or for a claim the case marks as a known
+  // failure "xfail" (it failed) / "xpass" (it passed).
   std::string verdict;
   std::string explanation; // why, in one or two sentences
+  int decisive_series = 0;  // the series that decided the verdict (a failing or inconclusive one)
+  std::string detection_limit;  // what this claim could have caught (the decisive series')
   std::string xfail_reason;  // the case's reason, when it marks the claim as a known failure
   std::vector<Series> series;  // series[0] is the claim's main measurement
   nlohmann::json evidence = nlohmann::json::object();

@@ -87,7 +87,7 @@ def main(argv):
         if re.search(r'="[^"]*\b(nan|inf)\b', match.group(2)):
             problems.append(f"{html.unescape(match.group(1))}: NaN or infinity in the map")
     # Verdicts as text and colour class, one per findings row.
-    shown = Counter(re.findall(r'<tr class="row-(pass|fail|error|xfail|xpass)', dom))
+    shown = Counter(re.findall(r'<tr class="row-(pass|fail|inconclusive|error|xfail|xpass)', dom))
     if shown != verdicts:
         problems.append(f"findings rows show verdicts {dict(shown)}, report.json has {dict(verdicts)}")
     # Self-contained: no scripts, stylesheets, images or fonts fetched from anywhere.

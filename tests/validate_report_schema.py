@@ -21,7 +21,7 @@ except ImportError:
 
 
 def semantic_errors(report):
-    counts = {"pass": 0, "fail": 0, "error": 0, "xfail": 0, "xpass": 0}
+    counts = {"pass": 0, "fail": 0, "inconclusive": 0, "error": 0, "xfail": 0, "xpass": 0}
     names = set()
     for case in report["cases"]:
         if case["name"] in names:
@@ -29,6 +29,10 @@ def semantic_errors(report):
         names.add(case["name"])
         for claim in case["claims"]:
             counts[claim["verdict"]] += 1
+            if claim["series"] and claim["decisive_series"] >= len(claim["series"]):
+                yield f"{case['name']}/{claim['id']}: decisive series {claim['decisive_series']} outside its series"
+            if claim["verdict"] == "inconclusive" and "to decide" not in claim["explanation"]:
+                yield f"{case['name']}/{claim['id']}: inconclusive without saying what would decide it"
             for series in claim["series"]:
                 where = f"{case['name']}/{claim['id']}/{series['label']}"
                 if len(series["h"]) != len(series["error"]):

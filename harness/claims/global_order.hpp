@@ -109,6 +109,42 @@ Vector<typename System::Scalar, System::dimension> momentum_at_step(
   return discrete_legendre(context.system, context.scheme.future, q[k], q[k + 1], h).p_begin;
 }
 
+// Steps too large for the motion are not evidence against an order: a failing series whose
+// error at the smallest h is still above 1% of the motion's size A = max(|q(0)|, |q(T)|,
+// |q(T) − q(0)|), and whose fit's interval does not exclude the prediction, has not reached the
+// asymptotic range. It becomes inconclusive, asking for more steps. A scheme converging to a
+// wrong solution still fails: its pairwise orders settle near 0 and the interval excludes the
+// prediction. (Duffing at T = 40 with N = 2 … 32, errors larger than the motion itself, once
+// failed at 1.34 against 2.)
+template <class T>
+void unresolved_motion_is_inconclusive(Series& series, const T& size, double tolerance,
+                                       int finest_steps) {
+  if (!series.holds || *series.holds || series.inconclusive || !series.fit || !series.fit->ok ||
+      !series.predicted_order || series.error.empty() || !(size > 0))
+    return;
+  const OrderFit& fit = *series.fit;
+  const T finest_error = from_decimal<T>(series.error[static_cast<std::size_t>(fit.sorted.back())]);
+  const bool unresolved = finest_error > size / 100;
+  const bool refuted = fit.confidence_high < *series.predicted_order - tolerance;
+  if (!unresolved || refuted) return;
+  series.inconclusive = true;
+  series.to_decide =
+      "step counts from N = " + std::to_string(4 * finest_steps) +
+      " up (the error must fall well below the motion before its order means anything)";
+  const std::string fails = ": fails";
+  if (series.explanation.size() >= fails.size() &&
+      series.explanation.compare(series.explanation.size() - fails.size(), fails.size(), fails) ==
+          0)
+    series.explanation.resize(series.explanation.size() - fails.size());
+  series.explanation +=
+      "; but the error at the smallest h, " + format_scalar(finest_error) + ", is " +
+      format_scalar(T(100 * finest_error / size), 3) + "% of the motion's size " +
+      format_scalar(size) +
+      " and the fit's interval does not exclude the prediction: the steps are "
+      "too large for the motion, which neither confirms nor refutes the order; to decide: " +
+      series.to_decide;
+}
+
 struct GlobalOrderClaim : Claim<GlobalOrderClaim> {
   static constexpr const char* id = "global-order";
   static constexpr const char* source = "Marsden–West Thm 2.3.1 (1); paper Thm 5.5 corollary";
@@ -135,6 +171,11 @@ struct GlobalOrderClaim : Claim<GlobalOrderClaim> {
       p_error.push_back(max_norm<T, n>(run.p_final[i] - p_exact));
     }
     claim.series.push_back(sweep_series(context, "|q_N − q(T)|", q_error, predicted(context)));
+    using std::max;
+    const T size = max({max_norm<T, n>(context.initial.q), max_norm<T, n>(final_state.q),
+                        max_norm<T, n>(Vector<T, n>(final_state.q - context.initial.q))});
+    unresolved_motion_is_inconclusive(claim.series.back(), size, context.order_tolerance,
+                                      context.spec.steps.back());
     claim.series.push_back(sweep_series(
         context, context.tq || context.map ? "|FL(v_N) − p(T)|" : "|p_end(q_{N−1}, q_N) − p(T)|", p_error,
         std::nullopt));

@@ -66,8 +66,10 @@ struct PastFutureSymmetryClaim : Claim<PastFutureSymmetryClaim> {
     claim.evidence["per_step"] = rows;
     // The symmetric residual is the claim's main measurement; the graph difference beside it.
     claim.series.push_back(sweep_series(context, "|Δw − Δw̃| (symmetric residual)", asymmetry,
-                                        OrderPrediction{order.order + 1, order.exact}));
-    claim.series.push_back(sweep_series(context, "max(|Δw|, |Δw̃|)", difference, order));
+                                        OrderPrediction{order.order + 1, order.exact},
+                                        context.floors_without_reference()));
+    claim.series.push_back(sweep_series(context, "max(|Δw|, |Δw̃|)", difference, order,
+                                        context.floors_without_reference()));
     conclude(claim);
     return claim;
   }

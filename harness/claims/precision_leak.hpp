@@ -58,6 +58,8 @@ struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {
       "2d-digit floor the defect keeps its order r";
   // The order r of the relative defect: the method's (that of its global error), or the order
   // the case declares for this claim.
+  static constexpr bool fails_by_order = false;  // a leak is a floor that does not fall
+
   template <LagrangianSystem System>
   static std::optional<int> theorem_order(const CaseContext<System>& context) {
     return context.map_order();

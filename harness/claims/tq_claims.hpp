@@ -88,7 +88,8 @@ struct ContactOrderClaim : Claim<ContactOrderClaim> {
     claim.evidence["contact_order_r"] = r;
     claim.evidence["mismatched_first_evolution"] = context.tq_past.has_value();
     claim.evidence["orders_against_exact"] = {nominal_order(*context.tq), nominal_order(*context.tq_compare)};
-    claim.series.push_back(sweep_series(context, "|F²_h(v) − F¹_h(v)|", difference, predicted(context)));
+    claim.series.push_back(sweep_series(context, "|F²_h(v) − F¹_h(v)|", difference,
+                                        predicted(context), context.floors_without_reference()));
     conclude(claim);
     return claim;
   }
@@ -259,7 +260,8 @@ struct ExistenceUniquenessClaim : Claim<ExistenceUniquenessClaim> {
     claim.evidence["uniqueness_search"] =
         "Newton (<= 30 iterations) from (w, w) ± (1 + |w|)/4 along each blown-up unknown (z, w~); "
         "every start that converges must land on F_h(v)";
-    claim.series.push_back(sweep_series(context, "|F_h(v) − v|", displacement, predicted(context)));
+    claim.series.push_back(sweep_series(context, "|F_h(v) − v|", displacement, predicted(context),
+                                        context.floors_without_reference()));
     // h_max against the speed |w|: Theorem 4.2 is semi-global, h_max(v) > 0 however fast v is;
     // h_max·|w| says how it falls.
     using std::ldexp;

@@ -284,8 +284,8 @@ TYPED_TEST(OrderFitTest, DropsAPlateauNearTheFloor) {
   const FloorSweep<T> sweep;
   const std::size_t last = 17;  // 7 flat points after it
   const std::vector<T> error = with_plateau_after(sweep.law, last);
-  // A floor 1000 times below the plateau (within plateau_floor_factor = 1e6): round-off.
-  const OrderFit fit = fit_order(sweep.h, error, T(sweep.law[last] / 1000));
+  // A floor 5 times below the plateau (within plateau_floor_factor = 10): round-off.
+  const OrderFit fit = fit_order(sweep.h, error, T(sweep.law[last] / 5));
   ASSERT_TRUE(fit.ok) << fit.reason;
   // Pairwise orders: 2 (within c h_max) up to `last`, then exactly 0; the last pairwise order
   // is 0 < plateau_fraction · 2 while more than half the rest are 2, so the rule drops the
@@ -317,6 +317,42 @@ TYPED_TEST(OrderFitTest, KeepsAPlateauFarAboveTheFloorAndTheOrderFails) {
   EXPECT_NEAR(fit.order, static_cast<double>(expected), kRounding);
   ASSERT_LT(expected, 2 - 0.25);  // a property of the constructed data
   EXPECT_FALSE(judge_order(fit, 2, false, 0.25).holds);
+}
+
+// A plateau 1000 times above the floor is no longer round-off (the floor is itself a thousand
+// times the rounding a correct method shows): the points stay, and the order fails. Once the
+// plateau rule reached 1e6 times the floor, and a midpoint rule converging to the wrong solution
+// in double passed global-order at 4.10 with its stalled points dropped.
+TYPED_TEST(OrderFitTest, KeepsAPlateauAThousandTimesAboveTheFloor) {
+  using T = TypeParam;
+  const FloorSweep<T> sweep;
+  const std::size_t last = 17;
+  const std::vector<T> error = with_plateau_after(sweep.law, last);
+  const OrderFit fit = fit_order(sweep.h, error, T(sweep.law[last] / 1000));
+  ASSERT_TRUE(fit.ok) << fit.reason;
+  EXPECT_TRUE(fit.dropped.empty());
+  ASSERT_EQ(fit.notes.size(), 1u);
+  EXPECT_TRUE(contains(fit.notes[0], "failure to converge")) << fit.notes[0];
+  EXPECT_FALSE(judge_order(fit, 2, false, 0.2).holds);
+}
+
+// A last error that grew is never dropped as round-off, however near the floor: a scheme whose
+// error turns back up is converging to something else.
+TYPED_TEST(OrderFitTest, KeepsAnErrorThatGrewNearTheFloor) {
+  using T = TypeParam;
+  const FloorSweep<T> sweep;
+  const std::size_t last = 17;
+  std::vector<T> error(sweep.law.begin(), sweep.law.begin() + last + 2);
+  std::vector<T> h(sweep.h.begin(), sweep.h.begin() + last + 2);
+  error[last + 1] = 4 * error[last];  // grew fourfold, to 8 times the floor below
+  const OrderFit fit = fit_order(h, error, T(error[last] / 2));
+  ASSERT_TRUE(fit.ok) << fit.reason;
+  EXPECT_TRUE(fit.dropped.empty());
+  ASSERT_EQ(fit.notes.size(), 1u);
+  EXPECT_TRUE(contains(fit.notes[0], "the error grew")) << fit.notes[0];
+  const OrderVerdict verdict = judge_order(fit, 2, false, 0.2);
+  EXPECT_FALSE(verdict.holds) << verdict.explanation;
+  EXPECT_FALSE(verdict.inconclusive) << verdict.explanation;
 }
 
 TYPED_TEST(OrderFitTest, DropsPreAsymptoticPointsWithAReason) {
@@ -438,6 +474,33 @@ TYPED_TEST(OrderFitTest, ExactVerdictRejectsAnOrderThreeSweepDeclaredExactlyTwo)
   EXPECT_TRUE(judge_order(fit, 3, true, 0.25).holds);
 }
 
+// A lower bound needs the interval, not only the point estimate. Three points whose pairwise
+// orders are 6 and 2.2 fit 4.1 with a 95% interval of about [−8, 16]: the point estimate is
+// above 2 − 0.2 and so are the finest orders, yet the fit cannot tell order 2 from order 1. The
+// verdict is inconclusive, names the interval and says what would decide; the same data with
+// the pairwise orders 4.0 and 4.2 (an interval that excludes 1) passes.
+TYPED_TEST(OrderFitTest, AWideIntervalIsInconclusiveNotAPass) {
+  using T = TypeParam;
+  using std::pow;
+  const std::vector<T> h = geometric_steps<T>("0.1", "2", 3);
+  const std::vector<T> wide = {T(1), T(1) / pow(T(2), 6), T(1) / pow(T(2), T(82) / 10)};
+  const OrderFit fit = fit_order(h, wide, T(0));
+  ASSERT_TRUE(fit.ok) << fit.reason;
+  ASSERT_LT(fit.confidence_low, 1);
+  const OrderVerdict verdict = judge_order(fit, 2, false, 0.2);
+  EXPECT_FALSE(verdict.holds) << verdict.explanation;
+  EXPECT_TRUE(verdict.inconclusive) << verdict.explanation;
+  EXPECT_TRUE(contains(verdict.explanation, "cannot tell the predicted order from its neighbour"))
+      << verdict.explanation;
+  EXPECT_TRUE(contains(verdict.to_decide, "more step sizes")) << verdict.to_decide;
+  const std::vector<T> narrow = {T(1), T(1) / pow(T(2), 4), T(1) / pow(T(2), T(82) / 10)};
+  const OrderVerdict tight = judge_order(fit_order(h, narrow, T(0)), 2, false, 0.2);
+  EXPECT_TRUE(tight.holds) << tight.explanation;
+  EXPECT_FALSE(tight.inconclusive) << tight.explanation;
+  // Every judged verdict states what it could have caught.
+  EXPECT_TRUE(contains(tight.detection_limit, "orders below 1.8 fail")) << tight.detection_limit;
+}
+
 // The small-h end decides. e = h² + 1e-5 is a scheme that stops converging (a tiny
 // inconsistency): over h = 1/8 … 1/256 the fit is 1.88, inside 2 − 0.2, but the last pairwise
 // orders are 1.84 and 1.49. The verdict fails and says the finest orders are why.
@@ -535,6 +598,85 @@ TEST(SeriesOfErrors, RefusesANonFiniteError) {
     error[1] = bad;
     EXPECT_THROW(make_series<double>("e", h, error, 1e-14, 2.0, false, 0.2), std::domain_error);
   }
+}
+
+}  // namespace
+}  // namespace vivv
+
+namespace vivv {
+namespace {
+
+// The floor keeps rounding and the reference apart (harness/series.hpp). Errors below a floor of
+// 1e-7:
+// - the reference sets that floor (its tolerance): inconclusive, naming the digits that would
+//   resolve the smallest error (an order-4 rule declared order 8 once passed this way);
+// - the working precision sets it and the errors are above its rounding level 1e-10: inconclusive;
+// - every error at the rounding level and the reference no limit: vanishes, a lower bound holds,
+//   an exact order cannot be confirmed (inconclusive).
+TEST(SeriesOfErrors, ErrorsBelowAFloorAreInconclusiveUnlessTheyVanishToRounding) {
+  const std::vector<double> h = {1.0 / 512, 1.0 / 1024, 1.0 / 2048};
+  const std::vector<double> falling = {4.8e-12, 3.0e-13, 1.9e-14};
+  const std::vector<double> between = {4.8e-8, 3.0e-9, 1.9e-10};  // below 1e-7, above 1e-7 / 1000
+  const Floor<double> reference_floor{1e-10, 1e-7, 1, 2048};
+  const Series by_reference = make_series<double>("e", h, falling, reference_floor, 8.0, true, 0.2);
+  ASSERT_TRUE(by_reference.holds.has_value());
+  EXPECT_FALSE(*by_reference.holds);
+  EXPECT_TRUE(by_reference.inconclusive);
+  EXPECT_NE(by_reference.explanation.find("which the reference's accuracy sets"), std::string::npos)
+      << by_reference.explanation;
+  EXPECT_NE(by_reference.to_decide.find("\"digits\": "), std::string::npos)
+      << by_reference.to_decide;
+  // 1000 x max(1e10, 2 N) x 10^-D <= 1.9e-14 / 1000: D >= 10 + 6 + 14 - log10(1.9) = 29.7.
+  EXPECT_NE(by_reference.to_decide.find("\"digits\": 30"), std::string::npos)
+      << by_reference.to_decide;
+
+  const Floor<double> rounding_floor{1e-7, 0, 1, 2048};
+  const Series by_rounding = make_series<double>("e", h, between, rounding_floor, 2.0, false, 0.2);
+  EXPECT_TRUE(by_rounding.inconclusive) << by_rounding.explanation;
+  EXPECT_NE(by_rounding.explanation.find("between the floor and the rounding level"),
+            std::string::npos)
+      << by_rounding.explanation;
+
+  const std::vector<double> vanishing = {3e-11, 1e-11, 5e-12};  // below 1e-7 / 1000
+  const Series vanishes = make_series<double>("e", h, vanishing, rounding_floor, 2.0, false, 0.2);
+  ASSERT_TRUE(vanishes.holds.has_value());
+  EXPECT_TRUE(*vanishes.holds) << vanishes.explanation;
+  EXPECT_FALSE(vanishes.inconclusive);
+  EXPECT_TRUE(make_series<double>("e", h, vanishing, rounding_floor, 2.0, true, 0.2).inconclusive);
+  // With the reference the limit, even errors at the rounding level do not vanish.
+  EXPECT_TRUE(
+      make_series<double>("e", h, vanishing, reference_floor, 2.0, false, 0.2).inconclusive);
+}
+
+// conclude(): a failing series makes the claim fail and decides it, even beside an
+// inconclusive one; an inconclusive series alone makes it inconclusive; the claim carries the
+// decisive series' index and detection limit.
+TEST(SeriesOfErrors, AFailureOutranksAnInconclusiveSeriesAndDecidesTheClaim) {
+  Series passing, undecided, failing;
+  passing.label = "a", passing.holds = true, passing.detection_limit = "limit a";
+  undecided.label = "b", undecided.holds = false, undecided.inconclusive = true,
+  undecided.explanation = "why b";
+  undecided.detection_limit = "limit b";
+  failing.label = "c", failing.holds = false, failing.explanation = "why c",
+  failing.detection_limit = "limit c";
+  ClaimResult both;
+  both.series = {passing, undecided, failing};
+  conclude(both);
+  EXPECT_EQ(both.verdict, "fail");
+  EXPECT_EQ(both.decisive_series, 2);
+  EXPECT_EQ(both.detection_limit, "limit c");
+  EXPECT_EQ(both.explanation, "c: why c");
+  ClaimResult open;
+  open.series = {passing, undecided};
+  conclude(open);
+  EXPECT_EQ(open.verdict, "inconclusive");
+  EXPECT_EQ(open.decisive_series, 1);
+  ClaimResult holds;
+  holds.series = {passing};
+  conclude(holds);
+  EXPECT_EQ(holds.verdict, "pass");
+  EXPECT_EQ(holds.decisive_series, 0);
+  EXPECT_EQ(holds.detection_limit, "limit a");
 }
 
 }  // namespace

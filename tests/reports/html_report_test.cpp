@@ -34,7 +34,7 @@ TEST(HtmlReport, EveryClaimHasItsRowAndItsPlot) {
 // summary counts all five verdicts.
 TEST(HtmlReport, FindingsShowTolerancesAndKnownFailures) {
   nlohmann::json report = testing::synthetic_report();
-  report["cases"][0]["order_tolerance"] = "0.35";
+  report["cases"][0]["order_tolerance"] = "0.25";
   report["cases"][0]["claims"][1]["verdict"] = "xfail";
   report["cases"][0]["claims"][1]["xfail_reason"] = "β ≠ 1/2";
   report["summary"] = {{"pass", 2}, {"fail", 0}, {"error", 0}, {"xfail", 1}, {"xpass", 0}};
@@ -43,7 +43,7 @@ TEST(HtmlReport, FindingsShowTolerancesAndKnownFailures) {
   ASSERT_TRUE(std::regex_search(
       page, row, std::regex("<tr class=\"row-xfail[^\"]*\" data-claim-row=\"alpha/lagrangian-order\">.*?</tr>")));
   EXPECT_NE(row.str().find("data-verdict=\"xfail\""), std::string::npos);
-  EXPECT_NE(row.str().find("order tolerance 0.35 (default 0.2)"), std::string::npos) << row.str();
+  EXPECT_NE(row.str().find("order tolerance 0.25 (default 0.2)"), std::string::npos) << row.str();
   EXPECT_NE(row.str().find("known failure: β ≠ 1/2"), std::string::npos) << row.str();
   for (const char* verdict : {"pass", "fail", "error", "xfail", "xpass"})
     EXPECT_EQ(count(page, std::string("data-count=\"") + verdict + "\""), 1) << verdict;

@@ -1,4 +1,4 @@
-// A small synthetic report (schema vivv-report/3) for the renderer tests:
+// A small synthetic report (schema vivv-report/4) for the renderer tests:
 // two cases, three claims — a passing order claim with a dropped point, a
 // failing order claim, and a claim without an order whose errors are all 0;
 // synthetic_report_with_map() adds an existence-uniqueness claim with its map
