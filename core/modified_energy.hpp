@@ -24,10 +24,12 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "core/discrete_lagrangian.hpp"
 #include "core/jet.hpp"
 #include "core/lagrangian.hpp"
+#include "core/state.hpp"
 
 namespace vivv {
 
@@ -86,16 +88,37 @@ auto modified_energy(const System& system, const ModifiedEnergyForm& form,
   return ModifiedEnergy<T>{H, T(H + h * h * correction)};
 }
 
-// Whether L = ½|w|² − U(q) at (q, w): unit mass matrix, no w–q coupling, to 1024 ulps.
+// Where L = ½|w|² − U(q) fails among `samples`: a mass matrix ∂²L/∂w² other than I, a w–q
+// coupling ∂²L/∂w∂q, or a term linear in w, ∂L/∂w(q, 0) ≠ 0 (then p ≠ w, and H = ½|p|² + U is
+// not the energy), each to 1024 ulps of its scale; a NaN is a failure too. Empty when every
+// sample is of that form. Several samples along the motion, because one can be fooled: a mass
+// 1 + (x − 1.1)² is 1 at x = 1.1, and a null term 0.3·w leaves both second derivatives alone.
 template <LagrangianSystem System>
-bool unit_mass_separable_at(const System& system, const Vector<typename System::Scalar, System::dimension>& q,
-                            const Vector<typename System::Scalar, System::dimension>& w) {
+std::string unit_mass_defect(
+    const System& system,
+    const std::vector<State<typename System::Scalar, System::dimension>>& samples) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
-  const auto d = lagrangian_derivatives(system, q, w);
+  using std::max;
+  T speed = 0;
+  for (const auto& x : samples) speed = max(speed, T(max_norm<T, n>(x.w)));
   const T tolerance = 1024 * epsilon<T>();
-  return (d.d2L_dw2 - Matrix<T, n, n>::Identity()).cwiseAbs().maxCoeff() <= tolerance &&
-         d.d2L_dwdq.cwiseAbs().maxCoeff() <= tolerance;
+  for (const auto& x : samples) {
+    const auto d = lagrangian_derivatives(system, x.q, x.w);
+    const T mass = Matrix<T, n, n>(d.d2L_dw2 - Matrix<T, n, n>::Identity()).cwiseAbs().maxCoeff();
+    const T coupling = d.d2L_dwdq.cwiseAbs().maxCoeff();
+    const T linear = max_norm<T, n>(momentum(system, x.q, Vector<T, n>(Vector<T, n>::Zero())));
+    const std::string at = " at q = " + to_decimal<T>(x.q[0], 6) + (n > 1 ? ", …" : "") +
+                           ", w = " + to_decimal<T>(x.w[0], 6) + (n > 1 ? ", …" : "");
+    if (!(mass <= tolerance))
+      return "|d2L/dw2 - I| = " + to_decimal<T>(mass, 3) + at + " (a mass matrix other than I)";
+    if (!(coupling <= tolerance * max(T(1), speed)))
+      return "|d2L/dw dq| = " + to_decimal<T>(coupling, 3) + at + " (L couples w and q)";
+    if (!(linear <= tolerance * max(T(1), speed)))
+      return "|dL/dw(q, 0)| = " + to_decimal<T>(linear, 3) + at +
+             " (a term linear in w: p = w + dL/dw(q, 0) is not w)";
+  }
+  return "";
 }
 
 }  // namespace vivv

@@ -31,10 +31,24 @@ struct ModifiedEnergyClaim : Claim<ModifiedEnergyClaim> {
     constexpr int n = System::dimension;
     using std::abs;
     using std::max;
-    if (!unit_mass_separable_at(context.system, context.initial.q, context.initial.w))
+    // The form of L checked along the motion: the initial and final states, their mixtures and
+    // reversals, and the state at T/2 of the reference flow.
+    const State<T, n>& x0 = context.initial;
+    const State<T, n>& xT = context.final_state;
+    const std::vector<State<T, n>> samples = {
+        x0,
+        xT,
+        context.exact(context.final_time / 2),
+        {x0.q, xT.w},
+        {xT.q, x0.w},
+        {x0.q, Vector<T, n>(-x0.w)},
+        {Vector<T, n>((x0.q + xT.q) / 2), Vector<T, n>((x0.w + xT.w) / 2)}};
+    if (const std::string defect = unit_mass_defect(context.system, samples); !defect.empty())
       throw CaseError(context.spec.file, "claims",
-                      "modified-energy is derived for L = ½|w|² − U(q): the system's mass matrix is not the identity "
-                      "or its L couples w and q at the initial state");
+                      "modified-energy is derived for L = ½|w|² − U(q), and this Lagrangian is not "
+                      "of that form "
+                      "along the motion: " +
+                          defect);
     ClaimResult claim = result();
     const ModifiedEnergyForm form = modified_energy_form(context.scheme.future.rule);
     std::vector<T> modified_error, energy_error;
