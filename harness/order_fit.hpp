@@ -83,9 +83,13 @@ struct Floor {
   // reference is promised to 10^(10 − D) (ten guard digits) and N steps round to about
   // 2N·10^(−D), so the floor is 1000·max(10^(10 − D), 2N·10^(−D))·scale.
   int digits_for(const T& error) const {
-    const long double log10_error = static_cast<long double>(log10_of(error));
-    return static_cast<int>(
-        std::ceil(std::log10(1e6L * std::max(1e10L, 2 * n_max) * scale) - log10_error));
+    // An error of 0 (or not finite) has no logarithm: the most digits a case may use then.
+    const long double log10_error =
+        error > 0 ? static_cast<long double>(log10_of(error)) : -INFINITY;
+    long double digits =
+        std::ceil(std::log10(1e6L * std::max(1e10L, 2 * n_max) * scale) - log10_error);
+    if (!(digits <= 1000)) digits = 1000;              // vivv's largest "digits" (NaN too)
+    return static_cast<int>(std::max(digits, 20.0L));  // and its smallest
   }
 
  private:

@@ -17,7 +17,8 @@ namespace vivv {
 // The MPFR digits that would resolve `error` above `floor`, as advice.
 inline std::string digits_advice(int digits) {
   const std::string d = std::to_string(digits);
-  return "scalar \"mpfr\" with \"digits\": " + d + " (or --scalar mpfr --digits " + d + ")";
+  return "scalar \"mpfr\" with \"digits\": " + d + " (or --scalar mpfr --digits " + d + ")" +
+         (digits >= 1000 ? ", the most vivv takes, which may not be enough" : "");
 }
 
 // A series of errors against h, fitted, and judged against `predicted`

@@ -643,9 +643,14 @@ TEST(SeriesOfErrors, ErrorsBelowAFloorAreInconclusiveUnlessTheyVanishToRounding)
   EXPECT_TRUE(*vanishes.holds) << vanishes.explanation;
   EXPECT_FALSE(vanishes.inconclusive);
   EXPECT_TRUE(make_series<double>("e", h, vanishing, rounding_floor, 2.0, true, 0.2).inconclusive);
-  // With the reference the limit, even errors at the rounding level do not vanish.
+  // With the reference the limit, even errors at the rounding level do not vanish; errors of
+  // exactly 0 have no logarithm, and the advice is the most digits a case may use.
   EXPECT_TRUE(
       make_series<double>("e", h, vanishing, reference_floor, 2.0, false, 0.2).inconclusive);
+  const Series zeros =
+      make_series<double>("e", h, std::vector<double>(3, 0.0), reference_floor, 2.0, false, 0.2);
+  EXPECT_TRUE(zeros.inconclusive);
+  EXPECT_NE(zeros.to_decide.find("\"digits\": 1000"), std::string::npos) << zeros.to_decide;
 }
 
 // conclude(): a failing series makes the claim fail and decides it, even beside an
