@@ -243,6 +243,11 @@ struct CaseContext {
   double order_tolerance;
   FitOptions fit_options;  // --refine tightens the asymptotic range (harness/run_case.cpp)
   std::function<void(const std::string&)> progress;
+  // The case's sweep, computed once per N and shared by every claim that walks it (global-order,
+  // energy-behaviour, symplecticity, discrete-noether, modified-energy): the DEL trajectories of
+  // `scheme` and the one-step map's states (harness/claims/global_order.hpp, run_sweep).
+  mutable std::map<int, std::shared_ptr<const DelTrajectory<T, n>>> del_runs;
+  mutable std::map<int, std::shared_ptr<const std::vector<State<T, n>>>> map_runs;
 
   CaseContext(const CaseSpec& spec_, System system_, std::function<void(const std::string&)> progress_)
       : spec(spec_),

@@ -12,7 +12,7 @@ template <LagrangianSystem System>
 struct SweepRun {
   using T = typename System::Scalar;
   std::vector<Vector<T, System::dimension>> q_final, p_final;
-  std::vector<DelTrajectory<T, System::dimension>> trajectories;
+  std::vector<std::shared_ptr<const DelTrajectory<T, System::dimension>>> trajectories;
 };
 
 // x_0 … x_N: N steps of the case's one-step map from the exact initial state. A state that
@@ -36,6 +36,18 @@ std::vector<State<typename System::Scalar, System::dimension>> map_trajectory(co
   return x;
 }
 
+// The case's one-step map run for N steps at h, computed once and kept in the context for the
+// other claims that walk it.
+template <LagrangianSystem System>
+std::shared_ptr<const std::vector<State<typename System::Scalar, System::dimension>>>
+shared_map_trajectory(const CaseContext<System>& context, const typename System::Scalar& h, int N) {
+  auto& kept = context.map_runs[N];
+  if (!kept)
+    kept = std::make_shared<const std::vector<State<typename System::Scalar, System::dimension>>>(
+        map_trajectory(context, h, N));
+  return kept;
+}
+
 // The structure claims' walk for a one-step map: `visit(h, x)` for each h with its
 // trajectory x_0 … x_N, reporting "<what> over N steps at h = …" as it goes.
 template <LagrangianSystem System, class Visit>
@@ -45,8 +57,28 @@ void visit_map_trajectories(const CaseContext<System>& context, const std::strin
   for (std::size_t i = 0; i < steps.size(); ++i) {
     const int N = context.spec.steps[i];
     context.report(what + " over " + std::to_string(N) + " steps at h = " + to_decimal<T>(steps[i], 6));
-    visit(steps[i], map_trajectory(context, steps[i], N));
+    visit(steps[i], *shared_map_trajectory(context, steps[i], N));
   }
+}
+
+// The DEL run of `scheme` over N steps at h. The case's own scheme is run once per N and kept in
+// the context: every claim that walks the sweep reads the same trajectory, so a claim's result
+// does not depend on which claim ran first, and a long run is not repeated per claim.
+template <LagrangianSystem System>
+std::shared_ptr<const DelTrajectory<typename System::Scalar, System::dimension>> del_run(
+    const CaseContext<System>& context, const DelScheme<typename System::Scalar>& scheme,
+    const typename System::Scalar& h, int N) {
+  using T = typename System::Scalar;
+  const bool own = &scheme == &context.scheme;
+  if (own)
+    if (auto kept = context.del_runs.find(N); kept != context.del_runs.end()) return kept->second;
+  context.report("DEL sweep N = " + std::to_string(N));
+  auto [q0, q1] = context.start(scheme, h);
+  auto run = std::make_shared<const DelTrajectory<T, System::dimension>>(
+      del_trajectory(context.system, scheme, q0, q1, h, N,
+                     context.step_progress("DEL sweep N = " + std::to_string(N))));
+  if (own) context.del_runs[N] = run;
+  return run;
 }
 
 template <LagrangianSystem System>
@@ -68,25 +100,22 @@ SweepRun<System> run_sweep(const CaseContext<System>& context, const DelScheme<t
     }
     if (context.map) {  // the one-step map from the exact initial state
       context.report(context.map->name() + " sweep N = " + std::to_string(N));
-      const State<T, System::dimension> end = map_trajectory(context, h, N).back();
+      const State<T, System::dimension> end = shared_map_trajectory(context, h, N)->back();
       run.q_final.push_back(end.q);
       run.p_final.push_back(momentum(context.system, end.q, end.w));
       continue;
     }
-    context.report("DEL sweep N = " + std::to_string(N));
-    auto [q0, q1] = context.start(scheme, h);
-    auto trajectory =
-        del_trajectory(context.system, scheme, q0, q1, h, N, context.step_progress("DEL sweep N = " + std::to_string(N)));
-    run.q_final.push_back(trajectory.q[N]);
-    run.p_final.push_back(discrete_legendre(context.system, scheme.future, trajectory.q[N - 1],
-                                            trajectory.q[N], h)
-                              .p_end);
+    auto trajectory = del_run(context, scheme, h, N);
+    run.q_final.push_back(trajectory->q[N]);
+    run.p_final.push_back(
+        discrete_legendre(context.system, scheme.future, trajectory->q[N - 1], trajectory->q[N], h)
+            .p_end);
     if (keep_trajectories) run.trajectories.push_back(std::move(trajectory));
   }
   return run;
 }
 
-// The structure claims' walk: the case's DEL sweep run once, then
+// The structure claims' walk: the case's DEL sweep (run once for all claims), then
 // `visit(h, q)` for each h with its trajectory q_0 … q_N, reporting
 // "<what> over N steps at h = …" as it goes.
 template <LagrangianSystem System, class Visit>
@@ -95,7 +124,7 @@ void visit_trajectories(const CaseContext<System>& context, const std::string& w
   SweepRun<System> run = run_sweep(context, context.scheme, true);
   const std::vector<T> steps = context.steps();
   for (std::size_t i = 0; i < steps.size(); ++i) {
-    const auto& q = run.trajectories[i].q;
+    const auto& q = run.trajectories[i]->q;
     context.report(what + " over " + std::to_string(q.size() - 1) + " steps at h = " + to_decimal<T>(steps[i], 6));
     visit(steps[i], q);
   }

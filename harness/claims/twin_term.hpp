@@ -89,11 +89,11 @@ struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
       int N = context.spec.steps[i];
       T gap = 0, scale = 1;
       for (int k = 0; k <= N; ++k) {
-        gap = max(gap, max_norm<T, n>(with.trajectories[i].q[k] - without.trajectories[i].q[k]));
-        scale = max(scale, max_norm<T, n>(with.trajectories[i].q[k]));
+        gap = max(gap, max_norm<T, n>(with.trajectories[i]->q[k] - without.trajectories[i]->q[k]));
+        scale = max(scale, max_norm<T, n>(with.trajectories[i]->q[k]));
       }
       // The Legendre shift at the run's last segment: exact up to a few roundings.
-      const auto& q = without.trajectories[i].q;
+      const auto& q = without.trajectories[i]->q;
       auto shifted = discrete_legendre(context.system, context.scheme.future, q[N - 1], q[N], h);
       auto plain_legendre = discrete_legendre(context.system, plain.future, q[N - 1], q[N], h);
       auto [shift_error, p_scale] = legendre_shift_error<T>(shifted.p_begin, plain_legendre.p_begin, shifted.p_end,
