@@ -346,6 +346,41 @@ TYPED_TEST(ClaimsTest, TruncationScalingSeesADefectThatFallsLikeAPowerOfH) {
   EXPECT_EQ(truncation_scaling(h, small, unit, 4), "");
 }
 
+// energy-behaviour's measurement on a motion w = cos t whose energy error oscillates with it: a
+// bounded oscillation is quiet, the same plus a linear drift of a tenth of its amplitude over T
+// is a drift, a T holding three returns is too short to judge, and no error is at the floor —
+// in double, quad and MPFR.
+TYPED_TEST(ClaimsTest, EnergyDriftTellsADriftFromTheOscillationItRidesOn) {
+  using T = TypeParam;
+  using std::cos;
+  using std::sin;
+  const auto measure = [](const T& final_time, int N, const T& drift_over_T) {
+    const T h = final_time / N;
+    std::vector<T> energies;
+    std::vector<Vector<T, 1>> velocities;
+    for (int k = 0; k < N; ++k) {
+      const T t = k * h;
+      energies.push_back(T(1) + T(1) / 1000 * sin(T(2) * t + T(1) / 3) +
+                         drift_over_T * t / final_time);
+      velocities.push_back(Vector<T, 1>(cos(t)));
+    }
+    return measure_energy_drift<T, 1>(h, energies, velocities, T(1));
+  };
+  const T long_run = 100, short_run = 20;  // 15 and 3 returns of the motion
+  const auto bounded = measure(long_run, 4000, T(0));
+  EXPECT_EQ(bounded.status, "quiet") << bounded.drift << " " << bounded.scatter;
+  EXPECT_EQ(bounded.cycles(), 15);
+  const auto drifting = measure(long_run, 4000, T(1) / 10000);
+  EXPECT_EQ(drifting.status, "drift") << drifting.drift << " " << drifting.scatter;
+  EXPECT_TRUE(drifting.linear);
+  EXPECT_NEAR(static_cast<double>(drifting.drift), 1e-4, 2e-5);
+  EXPECT_EQ(measure(short_run, 800, T(1) / 10000).status, "short");
+  std::vector<T> constant(1000, T(1));
+  std::vector<Vector<T, 1>> moving;
+  for (int k = 0; k < 1000; ++k) moving.push_back(Vector<T, 1>(cos(T(k) / 10)));
+  EXPECT_EQ((measure_energy_drift<T, 1>(T(1) / 10, constant, moving, T(1)).status), "floor");
+}
+
 TEST(ClaimRegistry, EveryClaimACaseMayNameIsRegistered) {
   std::vector<std::string> registered;
   for (const auto& claim : registered_claims()) registered.push_back(claim.id);
