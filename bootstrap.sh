@@ -1,12 +1,16 @@
 #!/usr/bin/env bash
-# The two entry points of the README, for a fresh Debian 12 machine:
-#   bash bootstrap.sh run    install what is missing, build, run the default suite (writes vivv-report/)
-#   bash bootstrap.sh test   install what is missing, build, run every test (ctest)
+# The entry points of the README, for a fresh Debian 12 machine:
+#   bash bootstrap.sh run       install what is missing, build the vivv tool, run the default suite
+#                               (writes vivv-report/)
+#   bash bootstrap.sh test      install what is missing, build everything, run every test (ctest)
+#   bash bootstrap.sh sanitize  the slow job: a second build under AddressSanitizer and
+#                               UndefinedBehaviorSanitizer, its unit tests, the default suite and the
+#                               fuzz corpus under them, after a negative control (tests/sanitize.sh)
 set -euo pipefail
 cd "$(dirname "$0")"
 
 mode=${1:-}
-case "$mode" in run|test) ;; *) echo "usage: bash bootstrap.sh run|test" >&2; exit 2 ;; esac
+case "$mode" in run|test|sanitize) ;; *) echo "usage: bash bootstrap.sh run|test|sanitize" >&2; exit 2 ;; esac
 
 # Debian packages vivv builds and tests with (DESIGN §2; nothing else, nothing downloaded).
 packages=(g++ cmake make ninja-build libeigen3-dev libboost-dev libmpfr-dev libgmp-dev nlohmann-json3-dev
@@ -26,14 +30,18 @@ if ((${#missing[@]})); then
 fi
 
 jobs=$(nproc)
+if [ "$mode" = sanitize ]; then
+  exec bash tests/sanitize.sh "$PWD" "$PWD/build-sanitize"
+fi
+
 # Ninja keeps both cores busy to the end of the build (make idles while the last unit of a
 # target compiles); a build/ configured earlier keeps its generator.
 generator=(); [ -f build/CMakeCache.txt ] || generator=(-G Ninja)
 cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build -j "$jobs"
-
 if [ "$mode" = run ]; then
+  # The run needs the tool alone, not the unit tests or the benchmarks.
+  cmake --build build -j "$jobs" --target vivv
   exec build/harness/vivv run --out vivv-report --jobs "$jobs" --progress
-else
-  cd build && exec ctest --output-on-failure -j "$jobs"
 fi
+cmake --build build -j "$jobs"
+cd build && exec ctest --output-on-failure -j "$jobs"
