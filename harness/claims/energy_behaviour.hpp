@@ -207,6 +207,142 @@ EnergyDrift<T> measure_energy_drift(const T& h, const std::vector<T>& energies,
   return drift;
 }
 
+template <LagrangianSystem System>
+std::string energy_drift_limit(const CaseContext<System>& context,
+                               const std::vector<EnergyDrift<typename System::Scalar>>& runs,
+                               std::size_t i, const std::string& quantity);
+
+// The verdict over the sweep on how `quantity` (the energy error, or the modified energy's)
+// behaves at each h (`runs`), as a series of the drifts D with its per-step rows in `evidence`:
+// fail when two consecutive h drift and the drift keeps pace with the quantity's spread, pass
+// when the finest h is quiet or at the floor, inconclusive otherwise with what would decide.
+template <LagrangianSystem System>
+Series energy_drift_series(const CaseContext<System>& context,
+                           const std::vector<EnergyDrift<typename System::Scalar>>& runs,
+                           const std::string& quantity, nlohmann::json& evidence) {
+  using T = typename System::Scalar;
+  const std::vector<T> steps = context.steps();
+  std::vector<T> drifts;
+  for (const auto& run : runs) drifts.push_back(run.drift);
+  Series series = sweep_series(context, "drift of " + quantity + ", averaged over returns, over T",
+                               drifts, std::nullopt);
+  nlohmann::json rows = nlohmann::json::array();
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const auto& run = runs[i];
+    rows.push_back({{"h", to_decimal<T>(steps[i])},
+                    {"N", context.spec.steps[i]},
+                    {"status", run.status},
+                    {"returns", run.returns},
+                    {"return_period", to_decimal<T>(run.period, 8)},
+                    {"drift", to_decimal<T>(run.drift, 8)},
+                    {"scatter", to_decimal<T>(run.scatter, 8)},
+                    {"systematic", to_decimal<T>(run.systematic, 8)},
+                    {"sections", run.sections},
+                    {"rounding", to_decimal<T>(run.rounding, 8)},
+                    {"spread", to_decimal<T>(run.spread, 8)},
+                    {"relative_drift", to_decimal<T>(run.relative_drift(), 8)},
+                    {"linear", run.linear}});
+  }
+  evidence["per_step"] = rows;
+  const auto at = [&](std::size_t i) {
+    return "h = " + to_decimal<T>(steps[i], 6) + " (N = " + std::to_string(context.spec.steps[i]) +
+           ")";
+  };
+  // Fail: two consecutive h drift, and the drift keeps pace with the quantity's spread.
+  for (std::size_t i = 0; i + 1 < runs.size(); ++i) {
+    if (runs[i].status != "drift" || runs[i + 1].status != "drift") continue;
+    using std::pow;
+    const T allowed_fall = pow(T(steps[i + 1] / steps[i]), 3);
+    if (runs[i + 1].relative_drift() < runs[i].relative_drift() * allowed_fall) continue;
+    series.holds = false;
+    series.explanation =
+        quantity + " drifts: averaged over the motion's returns it grows linearly by " +
+        format_scalar(runs[i + 1].drift) + " over T at " + at(i + 1) + " (" +
+        format_scalar(T(runs[i + 1].drift / (8 * runs[i + 1].noise())), 3) +
+        " × the drift threshold), and at " + at(i) + " by " + format_scalar(runs[i].drift) +
+        "; relative to its spread it is " + format_scalar(runs[i].relative_drift(), 3) + " then " +
+        format_scalar(runs[i + 1].relative_drift(), 3) + ": it falls with h like " + quantity +
+        " itself, as a non-symplectic method's does";
+    series.detection_limit = energy_drift_limit(context, runs, i + 1, quantity);
+    return series;
+  }
+  const std::size_t finest = runs.size() - 1;
+  const auto& last = runs[finest];
+  if (last.status == "floor" || last.status == "quiet") {
+    series.holds = true;
+    bool all_floor = true;
+    for (const auto& run : runs) all_floor = all_floor && run.status == "floor";
+    series.explanation =
+        all_floor ? quantity + " is at the rounding level at every h: nothing drifts"
+        : last.status == "floor"
+            ? quantity + " is at the rounding level at the finest " + at(finest)
+            : quantity + " is bounded: averaged over the motion's " +
+                  std::to_string(last.cycles()) + " returns at the finest " + at(finest) +
+                  ", it trends by " + format_scalar(last.drift) +
+                  " over T, within 4 × its noise (" + format_scalar(last.noise()) +
+                  ": the cycle means' scatter, the sections' disagreement and rounding)";
+    for (std::size_t i = 0; i < finest; ++i)
+      if (runs[i].status == "drift")
+        series.explanation +=
+            "; a trend at " + at(i) +
+            " does not persist at finer h (a symplectic method's residual trend falls faster "
+            "than its energy error)";
+    series.detection_limit = energy_drift_limit(context, runs, finest, quantity);
+    return series;
+  }
+  series.holds = false;
+  series.inconclusive = true;
+  const T final_time = context.final_time;
+  if (last.status == "short") {
+    const int returns = last.returns > 0 ? last.returns : 1;
+    const T needed = last.period > 0 ? T(5 * last.period) : T(5 * final_time / returns);
+    series.to_decide =
+        "T >= " + format_scalar(needed, 3) +
+        " (at least 4 complete returns of the motion; T = " + format_scalar(final_time, 6) +
+        " holds " + std::to_string(last.cycles()) + ")";
+    series.explanation =
+        "the motion returns to its section only " + std::to_string(last.returns) +
+        " times in T at the finest " + at(finest) +
+        ": over fewer than 4 complete returns a drift cannot be told from the oscillation of " +
+        quantity + "; to decide: " + series.to_decide;
+  } else if (last.status == "drift") {
+    series.to_decide =
+        "a sweep that goes on to N = " + std::to_string(2 * context.spec.steps.back()) +
+        " (whether the trend falls with h like " + quantity + ", as a drift does)";
+    series.explanation = quantity + ", averaged over returns, trends linearly by " +
+                         format_scalar(last.drift) + " over T at the finest " + at(finest) +
+                         ", but no coarser h confirms that it keeps pace with " + quantity +
+                         "; to decide: " + series.to_decide;
+  } else {
+    series.to_decide = "T >= " + format_scalar(T(2 * final_time), 3) +
+                       " (a drift grows with T, a slow oscillation does not)";
+    series.explanation =
+        quantity + ", averaged over returns, trends by " + format_scalar(last.drift) +
+        " over T at the finest " + at(finest) + ", between 4 and 8 × its noise " +
+        format_scalar(last.noise()) + (last.linear ? "" : " or not linearly") +
+        ": a drift cannot be told from a slow oscillation; to decide: " + series.to_decide;
+  }
+  series.detection_limit = energy_drift_limit(context, runs, finest, quantity);
+  return series;
+}
+
+template <LagrangianSystem System>
+std::string energy_drift_limit(const CaseContext<System>& context,
+                               const std::vector<EnergyDrift<typename System::Scalar>>& runs,
+                               std::size_t i, const std::string& quantity) {
+  using T = typename System::Scalar;
+  const auto& run = runs[i];
+  if (run.status == "floor")
+    return "an error above the rounding level " + format_scalar(run.rounding) +
+           " would have been judged";
+  if (run.status == "short") return "none: too few returns of the motion in T to judge a drift";
+  const T threshold = 8 * run.noise();
+  return "a linear drift of " + quantity + ", averaged over returns, above " +
+         format_scalar(threshold) + " over T (" + format_scalar(T(threshold / context.final_time)) +
+         " per unit time) at N = " + std::to_string(context.spec.steps[i]) +
+         ", falling with h like " + quantity + ", would have failed";
+}
+
 struct EnergyBehaviourClaim : Claim<EnergyBehaviourClaim> {
   static constexpr const char* id = "energy-behaviour";
   static constexpr const char* source = "Hairer–Lubich–Wanner ch. IX (backward error analysis); Marsden–West §1.3.4";
@@ -273,144 +409,12 @@ struct EnergyBehaviourClaim : Claim<EnergyBehaviourClaim> {
         "quiet if D <= 4 "
         "× noise; fails when two consecutive h drift with D / (max e − min e) falling by less than "
         "(h ratio)³";
-    std::vector<T> drifts;
-    for (const auto& run : runs) drifts.push_back(run.drift);
-    claim.series.push_back(conclude_drift(context, runs, drifts, claim.evidence));
+    claim.series.push_back(energy_drift_series(context, runs, "the energy error", claim.evidence));
     claim.series.push_back(
         sweep_series(context, "max_k |E_k − E_0| (the energy error's size, fitted, not judged)",
                      largest_error, std::nullopt));
     conclude(claim);
     return claim;
-  }
-
- private:
-  template <LagrangianSystem System>
-  static Series conclude_drift(const CaseContext<System>& context,
-                               const std::vector<EnergyDrift<typename System::Scalar>>& runs,
-                               const std::vector<typename System::Scalar>& drifts,
-                               nlohmann::json& evidence) {
-    using T = typename System::Scalar;
-    const std::vector<T> steps = context.steps();
-    Series series = sweep_series(context, "drift of the cycle-averaged energy error over T", drifts,
-                                 std::nullopt);
-    nlohmann::json rows = nlohmann::json::array();
-    for (std::size_t i = 0; i < runs.size(); ++i) {
-      const auto& run = runs[i];
-      rows.push_back({{"h", to_decimal<T>(steps[i])},
-                      {"N", context.spec.steps[i]},
-                      {"status", run.status},
-                      {"returns", run.returns},
-                      {"return_period", to_decimal<T>(run.period, 8)},
-                      {"drift", to_decimal<T>(run.drift, 8)},
-                      {"scatter", to_decimal<T>(run.scatter, 8)},
-                      {"systematic", to_decimal<T>(run.systematic, 8)},
-                      {"sections", run.sections},
-                      {"rounding", to_decimal<T>(run.rounding, 8)},
-                      {"spread", to_decimal<T>(run.spread, 8)},
-                      {"relative_drift", to_decimal<T>(run.relative_drift(), 8)},
-                      {"linear", run.linear}});
-    }
-    evidence["per_step"] = rows;
-    const auto at = [&](std::size_t i) {
-      return "h = " + to_decimal<T>(steps[i], 6) +
-             " (N = " + std::to_string(context.spec.steps[i]) + ")";
-    };
-    // Fail: two consecutive h drift, and the drift keeps pace with the energy error.
-    for (std::size_t i = 0; i + 1 < runs.size(); ++i) {
-      if (runs[i].status != "drift" || runs[i + 1].status != "drift") continue;
-      using std::pow;
-      const T allowed_fall = pow(T(steps[i + 1] / steps[i]), 3);
-      if (runs[i + 1].relative_drift() < runs[i].relative_drift() * allowed_fall) continue;
-      series.holds = false;
-      series.explanation =
-          "the energy error drifts: averaged over the motion's returns it grows linearly by " +
-          format_scalar(runs[i + 1].drift) + " over T at " + at(i + 1) + " (" +
-          format_scalar(T(runs[i + 1].drift / (8 * runs[i + 1].noise())), 3) +
-          " × the drift threshold), and at " + at(i) + " by " + format_scalar(runs[i].drift) +
-          "; relative to the energy error's spread it is " +
-          format_scalar(runs[i].relative_drift(), 3) + " then " +
-          format_scalar(runs[i + 1].relative_drift(), 3) +
-          ": it falls with h like the energy error itself, as a non-symplectic method's does";
-      series.detection_limit = detection_limit(context, runs, i + 1);
-      return series;
-    }
-    const std::size_t finest = runs.size() - 1;
-    const auto& last = runs[finest];
-    if (last.status == "floor" || last.status == "quiet") {
-      series.holds = true;
-      bool all_floor = true;
-      for (const auto& run : runs) all_floor = all_floor && run.status == "floor";
-      series.explanation =
-          all_floor ? "the energy error is at the rounding level at every h: nothing drifts"
-          : last.status == "floor"
-              ? "the energy error is at the rounding level at the finest " + at(finest)
-              : "the energy error is bounded: averaged over the motion's " +
-                    std::to_string(last.cycles()) + " returns at the finest " + at(finest) +
-                    ", it trends by " + format_scalar(last.drift) +
-                    " over T, within 4 × its noise (" + format_scalar(last.noise()) +
-                    ": the cycle means' scatter, the sections' disagreement and rounding)";
-      for (std::size_t i = 0; i < finest; ++i)
-        if (runs[i].status == "drift")
-          series.explanation +=
-              "; a trend at " + at(i) +
-              " does not persist at finer h (a symplectic method's residual trend falls faster "
-              "than its energy error)";
-      series.detection_limit = detection_limit(context, runs, finest);
-      return series;
-    }
-    series.holds = false;
-    series.inconclusive = true;
-    const T final_time = context.final_time;
-    if (last.status == "short") {
-      const int returns = last.returns > 0 ? last.returns : 1;
-      const T needed = last.period > 0 ? T(5 * last.period) : T(5 * final_time / returns);
-      series.to_decide =
-          "T >= " + format_scalar(needed, 3) +
-          " (at least 4 complete returns of the motion; T = " + format_scalar(final_time, 6) +
-          " holds " + std::to_string(last.cycles()) + ")";
-      series.explanation =
-          "the motion returns to its section only " + std::to_string(last.returns) +
-          " times in T at the finest " + at(finest) +
-          ": over fewer than 4 complete returns a drift cannot be told from the energy error's "
-          "own oscillation; to decide: " +
-          series.to_decide;
-    } else if (last.status == "drift") {
-      series.to_decide =
-          "a sweep that goes on to N = " + std::to_string(2 * context.spec.steps.back()) +
-          " (whether the trend falls with h like the energy error, as a drift does)";
-      series.explanation =
-          "the cycle-averaged energy error trends linearly by " + format_scalar(last.drift) +
-          " over T at the finest " + at(finest) +
-          ", but no coarser h confirms that it keeps pace with the energy error; to decide: " +
-          series.to_decide;
-    } else {
-      series.to_decide = "T >= " + format_scalar(T(2 * final_time), 3) +
-                         " (a drift grows with T, a slow oscillation does not)";
-      series.explanation =
-          "the cycle-averaged energy error trends by " + format_scalar(last.drift) +
-          " over T at the finest " + at(finest) + ", between 4 and 8 × its noise " +
-          format_scalar(last.noise()) + (last.linear ? "" : " or not linearly") +
-          ": a drift cannot be told from a slow oscillation; to decide: " + series.to_decide;
-    }
-    series.detection_limit = detection_limit(context, runs, finest);
-    return series;
-  }
-
-  template <LagrangianSystem System>
-  static std::string detection_limit(const CaseContext<System>& context,
-                                     const std::vector<EnergyDrift<typename System::Scalar>>& runs,
-                                     std::size_t i) {
-    using T = typename System::Scalar;
-    const auto& run = runs[i];
-    if (run.status == "floor")
-      return "an energy error above the rounding level " + format_scalar(run.rounding) +
-             " would have been judged";
-    if (run.status == "short") return "none: too few returns of the motion in T to judge a drift";
-    const T threshold = 8 * run.noise();
-    return "a linear drift of the cycle-averaged energy error above " + format_scalar(threshold) +
-           " over T (" + format_scalar(T(threshold / context.final_time)) +
-           " per unit time) at N = " + std::to_string(context.spec.steps[i]) +
-           ", falling with h like the energy error, would have failed";
   }
 };
 
