@@ -13,10 +13,41 @@
 
 namespace vivv {
 
+// Whether the measured leading coefficients c_i = (L_d − L_d^E)/h_i^{r+1} (in the sweep's order,
+// decreasing h) settle on the predicted E_{r+1}: the distance at the smallest h against the
+// coefficient's own error bar there — at order-1 convergence the last change |c_N − c_{N−1}|,
+// or half the change before it (either can dip through zero) — plus `floor`. A correct rule
+// passes through a cancellation dip of c − E_{r+1}, where a fitted order would not (the midpoint
+// on Duffing once failed at pairwise orders 0.26 and 0.74 while c agreed with E_3 to 6·10⁻⁶);
+// a swapped weight settles on another value and fails.
+template <class T>
+void judge_signed_coefficient(Series& series, const std::vector<T>& coefficient, const T& leading,
+                              const T& floor) {
+  using std::abs;
+  using std::max;
+  const std::size_t N = coefficient.size();
+  if (N < 2) return;
+  T bar = abs(T(coefficient[N - 1] - coefficient[N - 2]));
+  if (N >= 3) bar = max(bar, T(abs(T(coefficient[N - 2] - coefficient[N - 3])) / 2));
+  const T distance = abs(T(coefficient[N - 1] - leading));
+  const T allowed = 3 * bar + floor;
+  series.holds = distance <= allowed;
+  series.inconclusive = false;
+  series.to_decide.clear();
+  series.explanation =
+      "at the smallest h the measured coefficient " + format_scalar(coefficient[N - 1], 8) +
+      " is " + format_scalar(distance, 3) + " from E_(r+1) = " + format_scalar(leading, 8) +
+      (*series.holds ? ", within" : ", more than") + " 3 × its own error bar " +
+      format_scalar(bar, 3) + " (its last change with h) + the floor " + format_scalar(floor, 3) +
+      (*series.holds ? ": holds" : ": it settles on another value, fails");
+  series.detection_limit =
+      "a leading coefficient more than " + format_scalar(allowed, 3) + " from E_(r+1) fails";
+}
+
 // The sign, not only the size: (L_d − L_d^E)/h^{r+1} → E_{r+1}, the leading coefficient of
 // E(h) = L_d(q(0), q(h); h) − ∫₀ʰ L dt from the solution's Taylor expansion
-// (references/lagrangian_error_expansion.hpp), at order 1 in h. A swapped weight or
-// interval keeps every order but changes E_{r+1}: this series sees it.
+// (references/lagrangian_error_expansion.hpp). A swapped weight or interval keeps every order
+// but changes E_{r+1}: this series sees it (judge_signed_coefficient).
 template <LagrangianSystem System>
 void add_signed_coefficient(ClaimResult& claim, const CaseContext<System>& context,
                             const std::vector<typename System::Scalar>& signed_error) {
@@ -27,18 +58,24 @@ void add_signed_coefficient(ClaimResult& claim, const CaseContext<System>& conte
                                                               context.initial.q, context.initial.w, r + 3);
   const T leading = expansion[r + 1];
   const std::vector<T> steps = context.steps();
-  std::vector<T> distance;
-  for (std::size_t i = 0; i < steps.size(); ++i)
-    distance.push_back(abs(T(signed_error[i] / pow(steps[i], r + 1) - leading)));
+  std::vector<T> distance, coefficient;
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    coefficient.push_back(signed_error[i] / pow(steps[i], r + 1));
+    distance.push_back(abs(T(coefficient.back() - leading)));
+  }
   claim.evidence["leading_coefficient_taylor"] = to_decimal<T>(leading);
-  claim.evidence["leading_coefficient_measured_at_smallest_h"] =
-      to_decimal<T>(T(signed_error.back() / pow(steps.back(), r + 1)));
+  claim.evidence["leading_coefficient_measured_at_smallest_h"] = to_decimal<T>(coefficient.back());
   claim.evidence["leading_coefficient_rule"] =
-      "E(h) = L_d(q(0), q(h); h) − ∫₀ʰ L dt = Σ E_k h^k from the Taylor coefficients of the solution; "
-      "(L_d − L_d^E)/h^(r+1) must tend to E_(r+1) at order 1";
+      "E(h) = L_d(q(0), q(h); h) − ∫₀ʰ L dt = Σ E_k h^k from the Taylor coefficients of the "
+      "solution; "
+      "(L_d − L_d^E)/h^(r+1) at the smallest h must lie within 3 × its last change with h of "
+      "E_(r+1)";
   const Floor<T> floor = context.floors().scaled_down(pow(steps.back(), r + 1));
-  claim.series.push_back(make_series("|(L_d − L_d^E)/h^(r+1) − E_(r+1)| (signed leading coefficient)", steps,
-                                     distance, floor, 1.0, false, context.order_tolerance, context.fit_options));
+  Series series =
+      make_series("|(L_d − L_d^E)/h^(r+1) − E_(r+1)| (signed leading coefficient)", steps, distance,
+                  floor, std::nullopt, false, context.order_tolerance, context.fit_options);
+  judge_signed_coefficient(series, coefficient, leading, floor.value());
+  claim.series.push_back(series);
 }
 
 struct LagrangianOrderClaim : Claim<LagrangianOrderClaim> {

@@ -381,6 +381,30 @@ TYPED_TEST(ClaimsTest, EnergyDriftTellsADriftFromTheOscillationItRidesOn) {
   EXPECT_EQ((measure_energy_drift<T, 1>(T(1) / 10, constant, moving, T(1)).status), "floor");
 }
 
+// lagrangian-order's signed coefficient: measured coefficients that pass through a cancellation
+// dip of c − E on their way to E hold (the Duffing midpoint's, which a fitted order failed at
+// pairwise orders 0.26 and 0.74); coefficients that settle on another value (a swapped weight)
+// fail; in double, quad and MPFR.
+TYPED_TEST(ClaimsTest, TheSignedCoefficientIsJudgedAgainstItsOwnErrorBar) {
+  using T = TypeParam;
+  const T leading = T(1816666) / 1000000;
+  const std::vector<T> distance = {T(27293) / 100000000, T(156207) / 10000000000,
+                                   T(-224604) / 10000000000, T(-187993) / 10000000000,
+                                   T(-112918) / 10000000000};
+  std::vector<T> through_a_dip, elsewhere;
+  for (const T& d : distance) {
+    through_a_dip.push_back(leading + d);
+    elsewhere.push_back(leading + T(3) / 1000 + d / 100);
+  }
+  Series series;
+  judge_signed_coefficient(series, through_a_dip, leading, T(0));
+  EXPECT_TRUE(series.holds && *series.holds) << series.explanation;
+  judge_signed_coefficient(series, elsewhere, leading, T(0));
+  EXPECT_TRUE(series.holds && !*series.holds) << series.explanation;
+  EXPECT_NE(series.explanation.find("settles on another value"), std::string::npos)
+      << series.explanation;
+}
+
 TEST(ClaimRegistry, EveryClaimACaseMayNameIsRegistered) {
   std::vector<std::string> registered;
   for (const auto& claim : registered_claims()) registered.push_back(claim.id);
