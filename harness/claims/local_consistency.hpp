@@ -26,14 +26,14 @@ void judge_signed_coefficient(Series& series, const std::vector<T>& coefficient,
   using std::abs;
   using std::max;
   const std::size_t N = coefficient.size();
-  if (N < 2) return;
+  // Below the floor the fit already said what the evidence can decide (inconclusive, naming the
+  // digits), and the coefficient's error bar would be rounding.
+  if (N < 2 || series.inconclusive) return;
   T bar = abs(T(coefficient[N - 1] - coefficient[N - 2]));
   if (N >= 3) bar = max(bar, T(abs(T(coefficient[N - 2] - coefficient[N - 3])) / 2));
   const T distance = abs(T(coefficient[N - 1] - leading));
   const T allowed = 3 * bar + floor;
   series.holds = distance <= allowed;
-  series.inconclusive = false;
-  series.to_decide.clear();
   series.explanation =
       "at the smallest h the measured coefficient " + format_scalar(coefficient[N - 1], 8) +
       " is " + format_scalar(distance, 3) + " from E_(r+1) = " + format_scalar(leading, 8) +
@@ -73,7 +73,7 @@ void add_signed_coefficient(ClaimResult& claim, const CaseContext<System>& conte
   const Floor<T> floor = context.floors().scaled_down(pow(steps.back(), r + 1));
   Series series =
       make_series("|(L_d − L_d^E)/h^(r+1) − E_(r+1)| (signed leading coefficient)", steps, distance,
-                  floor, std::nullopt, false, context.order_tolerance, context.fit_options);
+                  floor, 1.0, false, context.order_tolerance, context.fit_options);
   judge_signed_coefficient(series, coefficient, leading, floor.value());
   claim.series.push_back(series);
 }
