@@ -26,6 +26,20 @@ inline void apply_reference_check(std::vector<ClaimResult>& claims, const Refere
   }
 }
 
+// A failed derivative-free cross-check (harness/derivative_check.hpp) voids every claim of the
+// case as a failed reference does: the flow or the DEL solved equations other than L's.
+inline void apply_derivative_check(std::vector<ClaimResult>& claims, const DerivativeCheck& check) {
+  if (check.holds) return;
+  for (auto& claim : claims) {
+    claim.evidence["verdict_before_derivative_check"] = claim.verdict;
+    claim.verdict = "error";
+    claim.explanation =
+        "vivv's derivatives of L disagree with differences of its values: " + check.explanation +
+        "; the reference flow or the DEL solved other equations than L's, and no verdict "
+        "measured with them can be trusted";
+  }
+}
+
 // An order with four significant digits.
 inline std::string order_text(double order) {
   char buffer[32];

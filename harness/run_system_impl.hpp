@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "harness/claims.hpp"
+#include "harness/derivative_check.hpp"
 #include "harness/run_system.hpp"
 
 namespace vivv {
@@ -116,6 +117,8 @@ void run_on_system(const System& system, CaseSpec& spec, CaseResult& result, boo
         throw std::runtime_error(std::string("the reference flow's cross-check: ") + error.what());
       }
       result.reference_error_estimate = result.reference_check.error_estimate;
+      context.report("cross-checking L's derivatives against differences of its values");
+      result.derivative_check = derivative_free_check(context);
     }
     result.claims.clear();
     for (const auto& id : spec.claims) {
@@ -149,6 +152,7 @@ void run_on_system(const System& system, CaseSpec& spec, CaseResult& result, boo
     spec.steps.push_back(static_cast<int>(next));
   }
   apply_reference_check(result.claims, result.reference_check);
+  apply_derivative_check(result.claims, result.derivative_check);
   for (auto& claim : result.claims)
     if (auto it = spec.xfail.find(claim.id); it != spec.xfail.end()) apply_expected_failure(claim, it->second);
   T smallest = 0;

@@ -112,9 +112,10 @@ nlohmann::json case_json(const CaseResult& result) {
             {"requested_steps", result.sweep.requested_steps},
             {"steps_used", spec.steps},
             {"stopped", result.sweep.stopped},
-            {"budget", result.sweep.refine ? "at most " + std::to_string(SweepRecord::max_refinements) +
-                                                  " halvings of h, N <= " + std::to_string(SweepRecord::max_steps)
-                                            : ""}}},
+            {"budget", result.sweep.refine
+                           ? "at most " + std::to_string(SweepRecord::max_refinements) +
+                                 " halvings of h, N <= " + std::to_string(SweepRecord::max_steps)
+                           : ""}}},
           {"labels", spec.labels},
           {"precision",
            {{"scalar", result.scalar},
@@ -129,7 +130,17 @@ nlohmann::json case_json(const CaseResult& result) {
             {"cross_check", result.reference_cross_check},
             {"error_estimate_at_T", result.reference_error_estimate},
             {"error_estimate_allowed", result.reference_check.allowed},
-            {"within_tolerance", result.reference_check.holds}}},
+            {"within_tolerance", result.reference_check.holds},
+            {"derivative_free_check",
+             {{"method",
+               "central differences of L and L_d values, no jets: the reference flow's "
+               "Euler–Lagrange residual at "
+               "t = 0 and T, and one DEL step's residual at the coarsest and finest h (Q×Q cases)"},
+              {"euler_lagrange_residual", result.derivative_check.euler_lagrange_residual},
+              {"euler_lagrange_allowed", result.derivative_check.euler_lagrange_allowed},
+              {"del_residual", result.derivative_check.del_residual},
+              {"del_allowed", result.derivative_check.del_allowed},
+              {"holds", result.derivative_check.holds}}}}},
           {"seconds", result.seconds},
           {"claims", claims}};
 }

@@ -88,6 +88,16 @@ struct ReferenceCheck {
   bool holds = true;
 };
 
+// The cross-check of vivv's derivatives from values of L and L_d alone
+// (harness/derivative_check.hpp): residuals and what each may reach, decimal strings; the DEL's
+// empty for a case that is not Q×Q. A check that fails voids every claim of the case.
+struct DerivativeCheck {
+  std::string euler_lagrange_residual, euler_lagrange_allowed;
+  std::string del_residual, del_allowed;
+  bool holds = true;
+  std::string explanation;  // what failed, empty when it holds
+};
+
 // The step sweep a case actually used: with --refine (or "refine": true) h is
 // halved until every order-fitted series settles, within a stated budget.
 struct SweepRecord {
@@ -108,6 +118,7 @@ struct CaseResult {
   std::string reference_method, reference_tolerance, reference_cross_check;
   std::string reference_error_estimate;  // measured at T, from the cross-check
   ReferenceCheck reference_check;
+  DerivativeCheck derivative_check;
   std::vector<ClaimResult> claims;
   SweepRecord sweep;
   // docs/theory.md (observed orders): bits >= −log2(smallest error) + guard. The smallest error of

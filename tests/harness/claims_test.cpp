@@ -5,6 +5,7 @@
 #include <functional>
 
 #include "cases/catalogue.hpp"
+#include "harness/derivative_check.hpp"
 #include "harness/run_case.hpp"
 #include "tests/test_scalars.hpp"
 
@@ -403,6 +404,45 @@ TYPED_TEST(ClaimsTest, TheSignedCoefficientIsJudgedAgainstItsOwnErrorBar) {
   EXPECT_TRUE(series.holds && !*series.holds) << series.explanation;
   EXPECT_NE(series.explanation.find("settles on another value"), std::string::npos)
       << series.explanation;
+}
+
+// The derivative-free cross-check: on the harmonic oscillator (ω = 1.3), the exact flow and a
+// midpoint DEL step satisfy their equations by differences of L and L_d values alone; the flow
+// of ω = 1.3·1.001 (what a derivative rule off by 0.2 % in ∂L/∂q would integrate) and a DEL
+// step whose q_2 is off by 10⁻³ of the motion fail, in double, quad and MPFR.
+TYPED_TEST(ClaimsTest, DerivativesAreCheckedFromValuesOfLAlone) {
+  using T = TypeParam;
+  using std::cos;
+  using std::sin;
+  HarmonicOscillator<T> oscillator;
+  oscillator.omega = T(13) / 10;
+  const auto flow = [](const T& omega, const T& t) {
+    State<T, 1> x;
+    x.q[0] = cos(omega * t) / 2;
+    x.w[0] = -omega * sin(omega * t) / 2;
+    return x;
+  };
+  const T u = epsilon<T>(), tau = T(1) / 8, t0 = T(7) / 10;
+  const auto residual = [&](const T& omega) {
+    return euler_lagrange_check(
+        oscillator, [&](const T& s) { return flow(omega, t0 + s); }, tau, u);
+  };
+  const auto right = residual(oscillator.omega);
+  EXPECT_TRUE(right.holds()) << right.residual << " > " << right.allowed;
+  const auto wrong = residual(T(oscillator.omega * T(1001) / 1000));
+  EXPECT_FALSE(wrong.holds()) << wrong.residual << " <= " << wrong.allowed;
+
+  QxQDiscretization<T> midpoint;
+  const DelScheme<T> scheme = matched_scheme(midpoint);
+  const T h = T(1) / 10;
+  const Vector<T, 1> q0(flow(oscillator.omega, T(0)).q[0]), q1(flow(oscillator.omega, h).q[0]);
+  auto [q2, report] = del_step(oscillator, scheme, q0, q1, h);
+  ASSERT_TRUE(report.converged);
+  const auto step = del_residual(oscillator, scheme, q0, q1, q2, h);
+  EXPECT_TRUE(step.holds()) << step.residual << " > " << step.allowed;
+  const Vector<T, 1> off(q2[0] + (q2[0] - q1[0]) / 1000);
+  const auto broken = del_residual(oscillator, scheme, q0, q1, off, h);
+  EXPECT_FALSE(broken.holds()) << broken.residual << " <= " << broken.allowed;
 }
 
 TEST(ClaimRegistry, EveryClaimACaseMayNameIsRegistered) {

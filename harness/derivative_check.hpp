@@ -1,0 +1,244 @@
+// A cross-check of vivv's own derivatives from values of L and L_d alone (issue 25). The
+// reference flow and the DEL both take L's derivatives from the same jets and tapes, so a fault
+// in a derivative rule moves both together and no claim sees it (a wrong Schur-complement sign in
+// the Galerkin derivatives was once caught only as a solver failure). Here, by central
+// differences, with no jet and no tape:
+//   Euler–Lagrange  from t = 0 and t = T over τ = the sweep's finest h, in integral form
+//                   p(t + τ) − p(t) = ∫ ∂L/∂q dt along the reference flow: ∂L/∂w and ∂L/∂q by
+//                   differences of L values, the integral by Gauss–Legendre (8 and 16 nodes) on
+//                   the flow's states;
+//   DEL             at q_1 of one DEL step from the case's start, at the coarsest and the finest
+//                   h: ∂/∂q_1 [L_d^past(q_0, q_1) + L_d^future(q_1, q_2)] by differences of L_d.
+// Each residual is judged against its own terms' size: it may reach √u of it (u the larger of
+// the unit roundoff and the reference's tolerance: far above what differences leave, far below
+// the O(1) a wrong derivative rule makes) plus 100 × what halving the increment changes.
+#pragma once
+
+#include <cmath>
+#include <functional>
+#include <string>
+#include <tuple>
+
+#include "core/quadrature.hpp"
+#include "harness/claims/global_order.hpp"
+
+namespace vivv {
+
+// A residual and what it may reach.
+template <class T>
+struct DifferenceResidual {
+  T residual = 0, allowed = 0, scale = 0;
+  bool holds() const { return residual <= allowed; }
+};
+
+// ∇f at x by central differences with increments δ_i.
+template <class T, int n>
+Vector<T, n> central_gradient(const std::function<T(const Vector<T, n>&)>& f, const Vector<T, n>& x,
+                              const Vector<T, n>& delta) {
+  Vector<T, n> gradient;
+  for (int i = 0; i < n; ++i) {
+    Vector<T, n> up = x, down = x;
+    up[i] += delta[i];
+    down[i] -= delta[i];
+    gradient[i] = (f(up) - f(down)) / (2 * delta[i]);
+  }
+  return gradient;
+}
+
+// Increments for differences of a function of x at the scale `size` of its variation:
+// ε^(1/3)·size, the balance of truncation (δ²) and rounding (ε/δ).
+template <class T, int n>
+Vector<T, n> difference_steps(const T& size) {
+  using std::cbrt;
+  Vector<T, n> delta;
+  for (int i = 0; i < n; ++i) delta[i] = cbrt(epsilon<T>()) * size;
+  return delta;
+}
+
+// The Euler–Lagrange equation in integral form along a flow, L by values only:
+//   p(t + τ) − p(t) − ∫_t^{t+τ} ∂L/∂q dt,   p = ∂L/∂w,
+// ∂L/∂w and ∂L/∂q by central differences, the integral by Gauss–Legendre on the flow's states
+// at the nodes t + c_j τ (`nodes`, with `weights` summing to 1). An integral, not a difference
+// quotient in time: the differences' error is not divided by τ.
+template <LagrangianSystem System>
+DifferenceResidual<typename System::Scalar> euler_lagrange_residual(
+    const System& system, const State<typename System::Scalar, System::dimension>& begin,
+    const State<typename System::Scalar, System::dimension>& end,
+    const std::vector<State<typename System::Scalar, System::dimension>>& nodes,
+    const std::vector<typename System::Scalar>& weights, const typename System::Scalar& tau,
+    const typename System::Scalar& u) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  using std::abs;
+  using std::max;
+  using std::sqrt;
+  const auto value = [&](const Vector<T, n>& q, const Vector<T, n>& w) {
+    return T(system.lagrangian(as_point<T, n>(q), as_point<T, n>(w)));
+  };
+  T q_size = 0, w_size = 0;
+  for (int i = 0; i < n; ++i)
+    q_size = max(q_size, T(abs(begin.q[i]))), w_size = max(w_size, T(abs(begin.w[i])));
+  if (!(q_size > 0)) q_size = 1;
+  if (!(w_size > 0)) w_size = 1;
+  const auto residual_with = [&](const T& shrink) {
+    // The increments only set the differences' accuracy, which halving them measures.
+    const Vector<T, n> dq = difference_steps<T, n>(T(q_size / shrink));
+    const Vector<T, n> dw = difference_steps<T, n>(T(w_size / shrink));
+    const auto momentum = [&](const State<T, n>& x) {
+      return central_gradient<T, n>([&](const Vector<T, n>& w) { return value(x.q, w); }, x.w, dw);
+    };
+    const Vector<T, n> change = momentum(end) - momentum(begin);
+    Vector<T, n> impulse = Vector<T, n>::Zero();
+    for (std::size_t j = 0; j < nodes.size(); ++j)
+      impulse += (weights[j] * tau) *
+                 central_gradient<T, n>([&](const Vector<T, n>& q) { return value(q, nodes[j].w); },
+                                        nodes[j].q, dq);
+    DifferenceResidual<T> r;
+    for (int i = 0; i < n; ++i) {
+      r.residual = max(r.residual, T(abs(T(change[i] - impulse[i]))));
+      r.scale = max({r.scale, T(abs(change[i])), T(abs(impulse[i]))});
+    }
+    return r;
+  };
+  DifferenceResidual<T> coarse = residual_with(T(1)), fine = residual_with(T(2));
+  fine.allowed = sqrt(u) * fine.scale + 100 * abs(T(fine.residual - coarse.residual));
+  return fine;
+}
+
+// The Euler–Lagrange residual over [t, t + τ] of the flow `advance` (advance(s) is the state at
+// t + s), with the integral by 8 and by 16 Gauss–Legendre nodes: the residual is the 16-node one,
+// and what the two differ by (the quadrature's own error, not L's) is allowed ten times over.
+template <LagrangianSystem System, class Advance>
+DifferenceResidual<typename System::Scalar> euler_lagrange_check(const System& system,
+                                                                 Advance&& advance,
+                                                                 const typename System::Scalar& tau,
+                                                                 const typename System::Scalar& u) {
+  using T = typename System::Scalar;
+  using std::abs;
+  const State<T, System::dimension> begin = advance(T(0)), end = advance(tau);
+  const auto with_nodes = [&](int m) {
+    const GaussLegendreRule<T> rule = gauss_legendre<T>(m);
+    std::vector<State<T, System::dimension>> nodes;
+    for (const T& c : rule.nodes) nodes.push_back(advance(T(c * tau)));
+    return euler_lagrange_residual(system, begin, end, nodes, rule.weights, tau, u);
+  };
+  const DifferenceResidual<T> coarse = with_nodes(8);
+  DifferenceResidual<T> fine = with_nodes(16);
+  fine.allowed += 10 * abs(T(coarse.residual - fine.residual));
+  return fine;
+}
+
+// ∂/∂q_1 [L_d^past(q_0, q_1) + L_d^future(q_1, q_2)] by differences of L_d values.
+template <LagrangianSystem System>
+DifferenceResidual<typename System::Scalar> del_residual(
+    const System& system, const DelScheme<typename System::Scalar>& scheme,
+    const Vector<typename System::Scalar, System::dimension>& q0,
+    const Vector<typename System::Scalar, System::dimension>& q1,
+    const Vector<typename System::Scalar, System::dimension>& q2,
+    const typename System::Scalar& h) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  using std::abs;
+  using std::max;
+  using std::sqrt;
+  T motion = 0;
+  for (int i = 0; i < n; ++i)
+    motion = max({motion, T(abs(T(q1[i] - q0[i]))), T(abs(T(q2[i] - q1[i])))});
+  if (!(motion > 0))
+    for (int i = 0; i < n; ++i) motion = max(motion, T(abs(q1[i])));
+  if (!(motion > 0)) motion = 1;
+  const auto residual_with = [&](const T& shrink) {
+    const Vector<T, n> delta = difference_steps<T, n>(T(motion / shrink));
+    const Vector<T, n> past = central_gradient<T, n>(
+        [&](const Vector<T, n>& q) {
+          return T(
+              discrete_lagrangian(system, scheme.past, as_point<T, n>(q0), as_point<T, n>(q), h));
+        },
+        q1, delta);
+    const Vector<T, n> future = central_gradient<T, n>(
+        [&](const Vector<T, n>& q) {
+          return T(
+              discrete_lagrangian(system, scheme.future, as_point<T, n>(q), as_point<T, n>(q2), h));
+        },
+        q1, delta);
+    DifferenceResidual<T> r;
+    for (int i = 0; i < n; ++i) {
+      r.residual = max(r.residual, T(abs(T(past[i] + future[i]))));
+      r.scale = max({r.scale, T(abs(past[i])), T(abs(future[i]))});
+    }
+    return r;
+  };
+  DifferenceResidual<T> coarse = residual_with(T(1)), fine = residual_with(T(2));
+  fine.allowed = sqrt(epsilon<T>()) * fine.scale + 100 * abs(T(fine.residual - coarse.residual));
+  return fine;
+}
+
+// The case's cross-check: the Euler–Lagrange residual of the reference flow at 0 and T and, for a
+// Q×Q case, the DEL residual of one step at the coarsest and at the finest h.
+template <LagrangianSystem System>
+DerivativeCheck derivative_free_check(const CaseContext<System>& context) {
+  using T = typename System::Scalar;
+  using std::max;
+  DerivativeCheck check;
+  const T u = max(epsilon<T>(), T(context.reference.tolerance()));
+  const std::vector<T> steps = context.steps();
+  // Over the sweep's finest step: short enough that Gauss–Legendre resolves the motion, long
+  // enough that the change of p stands far above the differences' error.
+  const T tau = steps.back();
+  DifferenceResidual<T> worst_el;
+  for (const State<T, System::dimension>* at : {&context.initial, &context.final_state}) {
+    const auto residual = euler_lagrange_check(
+        context.system,
+        [&](const T& s) { return s == 0 ? *at : context.reference.advance(*at, s); }, tau, u);
+    if (residual.residual - residual.allowed > worst_el.residual - worst_el.allowed ||
+        worst_el.scale == 0)
+      worst_el = residual;
+  }
+  check.euler_lagrange_residual = to_decimal<T>(worst_el.residual, 6);
+  check.euler_lagrange_allowed = to_decimal<T>(worst_el.allowed, 6);
+  check.holds = worst_el.holds();
+  std::string found;
+  if (!worst_el.holds())
+    found =
+        "the reference flow's Euler–Lagrange residual p(t + τ) − p(t) − ∫ ∂L/∂q dt, from values of "
+        "L, is " +
+        format_scalar(worst_el.residual) + " against terms of size " +
+        format_scalar(worst_el.scale) + " (allowed " + format_scalar(worst_el.allowed) + ")";
+  if (context.spec.discretization.formalism == "qxq") {
+    DifferenceResidual<T> worst_del;
+    bool measured = false;  // a step that does not converge is left to the claims' own runs
+    for (const T& h : {steps.front(), steps.back()}) {
+      Vector<T, System::dimension> q0, q1;
+      try {
+        std::tie(q0, q1) = context.start(context.scheme, h);
+      } catch (const SolverError&) {
+        continue;
+      }
+      auto [q2, report] = del_step(context.system, context.scheme, q0, q1, h);
+      if (!report.converged) continue;
+      const auto residual = del_residual(context.system, context.scheme, q0, q1, q2, h);
+      if (!measured ||
+          residual.residual - residual.allowed > worst_del.residual - worst_del.allowed)
+        worst_del = residual;
+      measured = true;
+    }
+    if (measured) {
+      check.del_residual = to_decimal<T>(worst_del.residual, 6);
+      check.del_allowed = to_decimal<T>(worst_del.allowed, 6);
+      check.holds = check.holds && worst_del.holds();
+    }
+    if (measured && !worst_del.holds())
+      found += (found.empty() ? "" : "; ") +
+               std::string(
+                   "the DEL residual D2 L_d(q_0, q_1) + D1 L_d(q_1, q_2) of one step, from values "
+                   "of L_d, "
+                   "is ") +
+               format_scalar(worst_del.residual) + " against terms of size " +
+               format_scalar(worst_del.scale) + " (allowed " + format_scalar(worst_del.allowed) +
+               ")";
+  }
+  check.explanation = found;
+  return check;
+}
+
+}  // namespace vivv
