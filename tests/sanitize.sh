@@ -56,22 +56,27 @@ vivv="$work/build/harness/vivv"
 grep "claims:" "$work/suite.log"
 
 # Each case of tests/negative and tests/inconclusive must exit 1 and each of tests/bad_cases 2,
-# as in ctest, with no sanitizer report.
+# as in ctest, with no sanitizer report: one case per core at a time.
+run_case() {  # run_case CASE_FILE EXPECTED_EXIT OUT_DIR
+  local code=0
+  "$vivv" run "$1" --out "$3" --quiet > "$3.log" 2>&1 || code=$?
+  if [ "$code" != "$2" ] || grep -qE "AddressSanitizer|LeakSanitizer|runtime error:" "$3.log"; then
+    echo "$1: exit $code (expected $2) under the sanitizers"; tail -40 "$3.log"; return 1
+  fi
+}
+export -f run_case
+export vivv
 cases=0
 for directory_exit in negative:1 inconclusive:1 bad_cases:2; do
   directory=${directory_exit%:*} expected=${directory_exit#*:}
+  mkdir -p "$work/cases/$directory"
   for case_file in "$source_dir/tests/$directory"/*.json; do
-    name=$(basename "$case_file" .json)
-    log="$work/cases/$directory/$name.log"
-    mkdir -p "$(dirname "$log")"
-    code=0
-    "$vivv" run "$case_file" --out "$work/cases/$directory/$name" --quiet > "$log" 2>&1 || code=$?
-    if [ "$code" != "$expected" ] || grep -qE "AddressSanitizer|LeakSanitizer|runtime error:" "$log"; then
-      echo "tests/$directory/$name.json: exit $code (expected $expected) under the sanitizers"; tail -40 "$log"; exit 1
-    fi
+    printf '%s\0%s\0%s\0' "$case_file" "$expected" "$work/cases/$directory/$(basename "$case_file" .json)"
     cases=$((cases + 1))
   done
-done
+done > "$work/cases.list"
+xargs -0 -n 3 -P "$(nproc)" bash -c 'run_case "$@"' _ < "$work/cases.list" ||
+  { echo "a test case ended otherwise than ctest expects (above)"; exit 1; }
 echo "$cases negative, inconclusive and bad cases: the expected exit codes, no sanitizer report"
 # Hostile inputs under the sanitizers: other mutations (seed 2) than ctest's fuzz/inputs (seed 1).
 python3 "$source_dir/tests/fuzz/fuzz_inputs.py" "$vivv" "$source_dir/tests/fuzz/corpus" \
