@@ -500,6 +500,14 @@ void print_claims_table(std::ostream& out, const nlohmann::json& report) {
       out << c.value("name", std::string()) << " / " << claim.value("id", std::string()) << ": "
           << verdict << ": " << claim.value("explanation", std::string()) << "\n";
     }
+  // What each pass could have caught: a pass is only as strong as its detection limit.
+  for (const auto& c : report["cases"])
+    for (const auto& claim : c["claims"]) {
+      const std::string limit = claim.value("detection_limit", std::string());
+      if (claim.value("verdict", "") != "pass" || limit.empty()) continue;
+      out << c.value("name", std::string()) << " / " << claim.value("id", std::string())
+          << ": pass; detection limit: " << limit << "\n";
+    }
   for (const auto& c : report["cases"]) {
     const nlohmann::json sweep = c.value("sweep", nlohmann::json::object());
     if (!sweep.value("refine", false)) continue;
