@@ -3,9 +3,10 @@
 #   bash bootstrap.sh run       install what is missing, build the vivv tool, run the default suite
 #                               (writes vivv-report/)
 #   bash bootstrap.sh test      install what is missing, build everything, run every test (ctest)
-#   bash bootstrap.sh sanitize  the slow job: a second build under AddressSanitizer and
-#                               UndefinedBehaviorSanitizer, its unit tests, the default suite and the
-#                               fuzz corpus under them, after a negative control (tests/sanitize.sh)
+#   bash bootstrap.sh sanitize  the slow job: the vivv tool built again under AddressSanitizer and
+#                               UndefinedBehaviorSanitizer, and the default suite, the test cases and
+#                               the fuzz corpus run under them, after a negative control
+#                               (tests/sanitize.sh)
 set -euo pipefail
 cd "$(dirname "$0")"
 
