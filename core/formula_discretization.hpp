@@ -17,6 +17,7 @@
 
 #include "core/discrete_lagrangian.hpp"
 #include "core/formula.hpp"
+#include "core/recorded.hpp"
 #include "core/tape.hpp"
 
 namespace vivv {

@@ -6,7 +6,9 @@
 // expression have the same length K.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -216,6 +218,103 @@ PowerSeries<T> cos(const PowerSeries<T>& a) {
   PowerSeries<T> s, c;
   sin_cos(a, s, c);
   return c;
+}
+
+// A power series whose coefficients are known only below `known` — what a
+// truncated series leaves after a division by one that starts at h^m (h itself,
+// or q(h) − q(0)): a/b = (a/h^m)/(b/h^m) drops a_0 … a_{m−1}, which must vanish,
+// and the top m coefficients of the quotient are then unknown. A discrete
+// Lagrangian written as a formula divides by h, (qe − qb)/h; this is the scalar
+// it is expanded in (references/lagrangian_error_expansion.hpp). Every other
+// operation is causal — coefficient k of the result needs coefficients ≤ k of
+// its operands — so `known` is the smaller of the operands'.
+template <class T>
+struct KnownSeries {
+  PowerSeries<T> series;
+  int known = std::numeric_limits<int>::max();  // a constant is known exactly
+
+  KnownSeries() = default;
+  KnownSeries(const T& c) : series(c) {}
+  KnownSeries(int c) : series(T(c)) {}
+  KnownSeries(PowerSeries<T> s, int k) : series(std::move(s)), known(k) {}
+};
+
+namespace power_series_detail {
+template <class T>
+KnownSeries<T> known(PowerSeries<T> s, int a, int b) {
+  return KnownSeries<T>(std::move(s), std::min(a, b));
+}
+}  // namespace power_series_detail
+
+template <class T>
+KnownSeries<T> operator+(const KnownSeries<T>& a, const KnownSeries<T>& b) {
+  return power_series_detail::known(a.series + b.series, a.known, b.known);
+}
+template <class T>
+KnownSeries<T> operator-(const KnownSeries<T>& a, const KnownSeries<T>& b) {
+  return power_series_detail::known(a.series - b.series, a.known, b.known);
+}
+template <class T>
+KnownSeries<T> operator-(const KnownSeries<T>& a) {
+  return KnownSeries<T>(-a.series, a.known);
+}
+template <class T>
+KnownSeries<T> operator*(const KnownSeries<T>& a, const KnownSeries<T>& b) {
+  return power_series_detail::known(a.series * b.series, a.known, b.known);
+}
+// a/b with b = h^m b', b'_0 ≠ 0: a's first m coefficients must vanish (to the rounding of the
+// largest known one; a nonzero one is a pole in h, which the expansion cannot hold).
+template <class T>
+KnownSeries<T> operator/(const KnownSeries<T>& a, const KnownSeries<T>& b) {
+  using std::abs, std::max;
+  const int usable = std::min({a.known, b.known, std::max(a.series.length(), b.series.length())});
+  int m = 0;
+  while (m < b.series.length() && m < usable && b.series[m] == 0) ++m;
+  if (m >= usable)
+    throw std::domain_error("KnownSeries: division by a series with no known nonzero coefficient");
+  if (m == 0) return power_series_detail::known(a.series / b.series, a.known, b.known);
+  T scale = 0;
+  for (int k = 0; k < std::min(a.series.length(), a.known); ++k)
+    scale = max(scale, T(abs(a.series[k])));
+  const T negligible = 256 * epsilon<T>() * scale;
+  for (int k = 0; k < m; ++k)
+    if (abs(a.series.coefficient(k)) > negligible)
+      throw std::domain_error(
+          "KnownSeries: a pole in h (the dividend does not vanish where the divisor does)");
+  return power_series_detail::known(a.series.shifted(-m) / b.series.shifted(-m), a.known - m,
+                                    b.known - m);
+}
+
+#define VIVV_KNOWN_MIXED(op)                                        \
+  template <class T>                                                \
+  KnownSeries<T> operator op(const KnownSeries<T>& a, const T& c) { \
+    return a op KnownSeries<T>(c);                                  \
+  }                                                                 \
+  template <class T>                                                \
+  KnownSeries<T> operator op(const T& c, const KnownSeries<T>& a) { \
+    return KnownSeries<T>(c) op a;                                  \
+  }
+VIVV_KNOWN_MIXED(+)
+VIVV_KNOWN_MIXED(-)
+VIVV_KNOWN_MIXED(*)
+VIVV_KNOWN_MIXED(/)
+#undef VIVV_KNOWN_MIXED
+
+#define VIVV_KNOWN_UNARY(f)                      \
+  template <class T>                             \
+  KnownSeries<T> f(const KnownSeries<T>& a) {    \
+    return KnownSeries<T>(f(a.series), a.known); \
+  }
+VIVV_KNOWN_UNARY(exp)
+VIVV_KNOWN_UNARY(log)
+VIVV_KNOWN_UNARY(sqrt)
+VIVV_KNOWN_UNARY(atan)
+VIVV_KNOWN_UNARY(sin)
+VIVV_KNOWN_UNARY(cos)
+#undef VIVV_KNOWN_UNARY
+template <class T>
+KnownSeries<T> pow(const KnownSeries<T>& a, const T& c) {
+  return KnownSeries<T>(pow(a.series, c), a.known);
 }
 
 }  // namespace vivv

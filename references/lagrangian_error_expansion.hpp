@@ -12,7 +12,9 @@
 // interval, which keep every order, is seen.
 #pragma once
 
+#include <array>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/discrete_lagrangian.hpp"
@@ -21,6 +23,54 @@
 #include "core/taylor_curve.hpp"
 
 namespace vivv {
+
+// E_0 … E_{terms−1} of E(h) for a discretization written as a formula (or registered C++),
+// whose only statement is its tape: the tape run in h-series, q_b = q(0), q_e = q(h) and h = h.
+// Its divisions by h leave the top coefficients unknown (KnownSeries), so the series is
+// computed longer than asked and lengthened until `terms` are known. This does not state the
+// rule a second time: it checks the measured coefficient (shooting, quadrature, the tape run in
+// T) against the same formula expanded exactly, so one rule gets one verdict whichever way it
+// is written. Throws std::domain_error where the formula has no expansion at this state.
+template <LagrangianSystem System>
+std::vector<typename System::Scalar> expression_error_expansion(
+    const System& system, const QxQDiscretization<typename System::Scalar>& d,
+    const Vector<typename System::Scalar, System::dimension>& q0,
+    const Vector<typename System::Scalar, System::dimension>& w0, int terms) {
+  using T = typename System::Scalar;
+  using P = PowerSeries<T>;
+  using K = KnownSeries<T>;
+  constexpr int n = System::dimension;
+  const Tape<T> tape = euler_lagrange_tape(system);
+  std::vector<T> x0(n), v0(n);
+  for (int i = 0; i < n; ++i) x0[i] = q0[i], v0[i] = w0[i];
+  for (int length = terms + 4; length <= 4 * terms + 16; length *= 2) {
+    const auto solution = solution_taylor_coefficients<T, T>(tape, x0, v0, length);
+    std::array<K, 2 * n + 1> x;
+    Point<P, n> q, w;
+    for (int i = 0; i < n; ++i) {
+      q[i] = P::from(std::vector<T>(solution[i].begin(), solution[i].begin() + length));
+      w[i] = q[i].derivative();
+      x[i] = K(P(q0[i], length), length);
+      x[n + i] = K(q[i], length);
+    }
+    P step(T(0), length);
+    step[1] = 1;
+    x[2 * n] = K(step, length);
+    const K discrete = d.expression->evaluate_first(x.data());
+    if (discrete.known < terms) continue;
+    const P along = system.lagrangian(q, w);
+    P error = discrete.series;
+    for (int k = 1; k < length; ++k) error[k] -= along[k - 1] / k;
+    if (d.twin)  // + a·h^s·(q(h) − q(0))
+      for (int i = 0; i < n; ++i)
+        error = error + (d.twin->a[i] * (q[i] - P(q0[i], length))).shifted(d.twin->power);
+    std::vector<T> out(terms);
+    for (int k = 0; k < terms; ++k) out[k] = error.coefficient(k);
+    return out;
+  }
+  throw std::domain_error("the formula's divisions by h leave fewer than " + std::to_string(terms) +
+                          " coefficients of its expansion known");
+}
 
 // E_0 … E_{terms−1} of E(h) for the discretization `d` along the solution through (q0, w0).
 template <LagrangianSystem System>
@@ -66,8 +116,8 @@ std::vector<typename System::Scalar> lagrangian_error_expansion(
     case QxQRule::weighted:
       per_step = (1 - c) * system.lagrangian(q_begin, quotient) + c * system.lagrangian(q, quotient);
       break;
-    case QxQRule::expression:  // a user's formula has no second, independent statement to expand
-      throw std::invalid_argument("lagrangian_error_expansion: no independent expansion of a formula L_d");
+    case QxQRule::expression:
+      return expression_error_expansion(system, d, q0, w0, terms);
     case QxQRule::galerkin:  // extremized by Newton: no closed expression to expand
       throw std::invalid_argument("lagrangian_error_expansion: no independent expansion of a Galerkin L_d");
   }

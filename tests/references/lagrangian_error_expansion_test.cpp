@@ -3,7 +3,9 @@
 // of core/discrete_lagrangian.hpp, on the harmonic oscillator, whose L_d^E has a
 // closed form: every rule and a twin term, in double, quad and MPFR. Negative
 // control: the expansion of β = 0.3 against the measured error of β = 0.7 (a
-// swapped weight, which keeps the order) is rejected.
+// swapped weight, which keeps the order) is rejected. A rule written as a formula
+// expands, from its tape, to its built-in twin's coefficients; a formula with a
+// pole in h is refused, not expanded.
 #include "references/lagrangian_error_expansion.hpp"
 
 #include <gtest/gtest.h>
@@ -11,7 +13,9 @@
 #include <cmath>
 #include <string>
 
+#include "cases/formula_parser.hpp"
 #include "cases/systems.hpp"
+#include "core/formula_discretization.hpp"
 #include "tests/test_scalars.hpp"
 
 namespace vivv {
@@ -98,6 +102,51 @@ TYPED_TEST(LagrangianErrorExpansionTest, ASwappedWeightIsSeenAlthoughItKeepsTheO
   const T leading = this->expansion(predicted, 4)[2];
   using std::abs;
   EXPECT_GT(d[2], abs(leading));
+}
+
+// The formula's expansion is the built-in rule's, coefficient by coefficient, on the pendulum
+// (sin inside L) — with the divisions by h the formula makes — and with a twin term.
+TYPED_TEST(LagrangianErrorExpansionTest, AFormulaExpandsToItsBuiltInTwin) {
+  using T = TypeParam;
+  using std::abs, std::max;
+  Pendulum<T> pendulum;
+  const Vector<T, 1> q0(T(7) / 10), w0(T(-2) / 5);
+  auto formula = [&](const std::string& text) {
+    return expression_discretization(pendulum, text, parse_formula(text), {}, 2);
+  };
+  std::vector<std::pair<QxQDiscretization<T>, QxQDiscretization<T>>> twins = {
+      {rule<T>(QxQRule::midpoint), formula("h*L((qb + qe)/2, (qe - qb)/h)")},
+      {rule(QxQRule::weighted, T(3) / 10),
+       formula("h*(0.7*L(qb, (qe - qb)/h) + 0.3*L(qe, (qe - qb)/h))")},
+      {rule<T>(QxQRule::left_rectangle), formula("h*L(qb, (qe - qb)/h)")}};
+  auto with_twin = twins[0];
+  with_twin.first.twin = with_twin.second.twin = TwinTerm<T>{{T(2)}, 1};
+  twins.push_back(with_twin);
+  for (std::size_t i = 0; i < twins.size(); ++i) {
+    const auto built_in = lagrangian_error_expansion(pendulum, twins[i].first, q0, w0, 6);
+    const auto written = lagrangian_error_expansion(pendulum, twins[i].second, q0, w0, 6);
+    ASSERT_EQ(written.size(), built_in.size());
+    for (std::size_t k = 0; k < built_in.size(); ++k)
+      EXPECT_LE(abs(T(written[k] - built_in[k])),
+                this->working_tolerance() * max(T(1), T(abs(built_in[k]))))
+          << "pair " << i << ", E_" << k;
+  }
+  // A swapped weight written as a formula is a different coefficient (the control).
+  const auto swapped = lagrangian_error_expansion(
+      pendulum, formula("h*(0.3*L(qb, (qe - qb)/h) + 0.7*L(qe, (qe - qb)/h))"), q0, w0, 4);
+  const auto weighted = lagrangian_error_expansion(pendulum, twins[1].first, q0, w0, 4);
+  EXPECT_GT(abs(T(swapped[2] - weighted[2])), abs(weighted[2]) / 2);
+}
+
+TYPED_TEST(LagrangianErrorExpansionTest, AFormulaWithAPoleInHIsRefusedNotExpanded) {
+  using T = TypeParam;
+  Pendulum<T> pendulum;
+  const Vector<T, 1> q0(T(7) / 10), w0(T(-2) / 5);
+  for (const std::string text :
+       {"h*L(qb, (qe - qb)/h) + 1/h", "h*L(qb, (qe - qb)/h^2)", "sqrt((qe[1] - qb[1])^2)"}) {
+    const auto d = expression_discretization(pendulum, text, parse_formula(text), {}, 1);
+    EXPECT_THROW(lagrangian_error_expansion(pendulum, d, q0, w0, 4), std::domain_error) << text;
+  }
 }
 
 }  // namespace
