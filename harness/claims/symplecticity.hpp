@@ -7,6 +7,7 @@
 // through B_e⁻¹, O(h²) and far above rounding (the claim's negative control).
 #pragma once
 
+#include "core/energy.hpp"
 #include "core/symplectic.hpp"
 #include "harness/claim.hpp"
 #include "harness/claims/global_order.hpp"
@@ -39,12 +40,36 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
     ClaimResult claim = result();
     PerStepCheck<T> check;
     std::vector<T> units;  // the rounding unit of the judged (worst) step at each h
+    std::vector<JacobianCheck> jacobian_checks;  // the judged step's Jacobian against its map
     if (context.map) {
       // A one-step map: its Jacobian by jets through its own code; no Hessian blocks to size.
       visit_map_trajectories(context, "symplecticity: Jacobians", [&](const T& h, const auto& x) {
         std::vector<Matrix<T, 2 * n, 2 * n>> jacobians;
-        for (std::size_t k = 0; k + 1 < x.size(); ++k) jacobians.push_back(context.map->jacobian(x[k], h));
-        units.push_back(judge<T, n>(check, h, jacobians, std::vector<T>(jacobians.size(), T(1))));
+        Vector<T, 2 * n> scale = Vector<T, 2 * n>::Zero();  // each coordinate's size along the run
+        for (std::size_t k = 0; k + 1 < x.size(); ++k) {
+          jacobians.push_back(context.map->jacobian(x[k], h));
+          scale =
+              scale.cwiseMax(phase_size<T, n>(x[k].q, momentum(context.system, x[k].q, x[k].w)));
+        }
+        std::size_t worst = 0;
+        units.push_back(
+            judge<T, n>(check, h, jacobians, std::vector<T>(jacobians.size(), T(1)), worst));
+        // The map on (q, p) itself: w from p by the inverse Legendre transform, one step, p' =
+        // FL(q', w').
+        const State<T, n>& at = x[worst];
+        auto step = [&](const Vector<T, 2 * n>& y) {
+          State<T, n> from;
+          from.q = y.template head<n>();
+          from.w = velocity_for_momentum(context.system, from.q, Vector<T, n>(y.template tail<n>()),
+                                         at.w);
+          const State<T, n> to = context.map->step(from, h);
+          Vector<T, 2 * n> out;
+          out << to.q, momentum(context.system, to.q, to.w);
+          return out;
+        };
+        Vector<T, 2 * n> y;
+        y << at.q, momentum(context.system, at.q, at.w);
+        jacobian_checks.push_back(check_jacobian(h, worst, step, y, jacobians[worst], scale));
       });
       claim.evidence["jacobian"] = "forward-mode automatic differentiation of one step of " + context.map->name() +
                                    " in first-order jets over (q, p), w = M^-1 p";
@@ -58,14 +83,39 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
         using std::max;
         std::vector<Matrix<T, 2 * n, 2 * n>> jacobians;
         std::vector<T> sizes;
+        Vector<T, 2 * n> scale = Vector<T, 2 * n>::Zero();  // each coordinate's size along the run
         for (std::size_t k = 0; k + 1 < q.size(); ++k) {
           auto future = discrete_legendre(context.system, context.scheme.future, q[k], q[k + 1], h);
+          scale = scale.cwiseMax(phase_size<T, n>(q[k], future.p_begin));
           auto past = discrete_legendre(context.system, context.scheme.past, q[k], q[k + 1], h);
           jacobians.push_back(del_map_jacobian<T, n>(future, past));
           sizes.push_back(max({T(1), max_entry<T, n, n>(future.dp_begin_dq_b), max_entry<T, n, n>(future.dp_begin_dq_e),
                                max_entry<T, n, n>(past.dp_end_dq_b), max_entry<T, n, n>(past.dp_end_dq_e)}));
         }
-        units.push_back(judge<T, n>(check, h, jacobians, sizes));
+        std::size_t worst = 0;
+        units.push_back(judge<T, n>(check, h, jacobians, sizes, worst));
+        // The DEL's map on (q, p) itself: q' by Newton on p_begin[future](q, q') = p from the
+        // trajectory's q_{k+1}, p' = p_end[past](q, q').
+        const Vector<T, n>& q_next = q[worst + 1];
+        auto step = [&](const Vector<T, 2 * n>& y) {
+          const Vector<T, n> from = y.template head<n>(), p = y.template tail<n>();
+          Vector<T, n> to = q_next;
+          auto report = newton_solve<T, n>(to, [&](const Vector<T, n>& x, Vector<T, n>& residual,
+                                                   Matrix<T, n, n>& jacobian) {
+            auto legendre = discrete_legendre(context.system, context.scheme.future, from, x, h);
+            residual = legendre.p_begin - p;
+            jacobian = legendre.dp_begin_dq_e;
+          });
+          require_converged(
+              report, "symplecticity's check of its Jacobian: a DEL step from a perturbed (q, p)");
+          Vector<T, 2 * n> out;
+          out << to, discrete_legendre(context.system, context.scheme.past, from, to, h).p_end;
+          return out;
+        };
+        Vector<T, 2 * n> y;
+        y << q[worst],
+            discrete_legendre(context.system, context.scheme.future, q[worst], q_next, h).p_begin;
+        jacobian_checks.push_back(check_jacobian(h, worst, step, y, jacobians[worst], scale));
       });
       claim.evidence["jacobian"] =
           "implicit function theorem: dq'/d(q, p) = B_e^-1 (-B_b, I), dp'/d(q, p) = (E_b, 0) + E_e dq'/d(q, p) "
@@ -88,18 +138,73 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
     check.conclude_claim(claim, context, "max_k |J_kᵀΩJ_k − Ω| (worst step against its tolerance)",
                          "symplectic to working precision at every step and every h, and so is the N-step map",
                          "the (q, p) map is not symplectic (see per-step evidence)");
+    conclude_jacobian_checks(claim, jacobian_checks);
     return claim;
+  }
+
+  // The Jacobian of the judged step at one h against central differences of the step's map.
+  struct JacobianCheck {
+    nlohmann::json row;
+    bool holds = true;
+    std::string where;
+  };
+  template <class T, int m, class Map>
+  static JacobianCheck check_jacobian(const T& h, std::size_t step, const Map& map,
+                                      const Vector<T, m>& y, const Matrix<T, m, m>& jacobian,
+                                      const Vector<T, m>& scale) {
+    const JacobianAgreement<T> agreement = compare_with_differences<T, m>(map, y, jacobian, scale);
+    JacobianCheck out;
+    out.holds = agreement.holds;
+    out.row = {{"h", to_decimal<T>(h)},
+               {"step", step},
+               {"mismatch", to_decimal<T>(agreement.mismatch)},
+               {"allowed", to_decimal<T>(agreement.allowed)},
+               {"holds", agreement.holds}};
+    out.where = "at h = " + to_decimal<T>(h, 6) + ", step " + std::to_string(step) +
+                " the Jacobian judged is " + format_scalar(agreement.mismatch, 3) +
+                " from central differences of that step's map (allowed " +
+                format_scalar(agreement.allowed, 3) + ")";
+    return out;
+  }
+  // (|q_i|, |p_i|) of one state.
+  template <class T, int n>
+  static Vector<T, 2 * n> phase_size(const Vector<T, n>& q, const Vector<T, n>& p) {
+    Vector<T, 2 * n> size;
+    size << q.cwiseAbs(), p.cwiseAbs();
+    return size;
+  }
+  // A Jacobian that is not the derivative of the step it is judged for makes the verdict
+  // meaningless either way: the claim is an error, whatever the identity measured.
+  static void conclude_jacobian_checks(ClaimResult& claim,
+                                       const std::vector<JacobianCheck>& checks) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (const JacobianCheck& c : checks) rows.push_back(c.row);
+    claim.evidence["jacobian_check"] = {
+        {"rule",
+         "at each h, the judged (worst) step's Jacobian against central differences of the step's "
+         "own "
+         "map on (q, p) at widths δ = ε^(1/3)·max(|x_j|, the coordinate's largest size along the "
+         "run), δ/2 "
+         "and δ/4: it may differ from the widest by 4 × the larger change between them + √ε·|J|"},
+        {"rows", rows}};
+    for (const JacobianCheck& c : checks)
+      if (!c.holds) {
+        claim.verdict = "error";
+        claim.explanation =
+            c.where + ": the identity was measured on a matrix that is not this map's derivative";
+        return;
+      }
   }
 
  private:
   // The verdict at one h from the step Jacobians J_k and the sizes s_k of what they were
   // computed from: each step against ulps·u_k, u_k = ε·s_k·max(1, |J_k|)², the composition
   // against N times the largest of those times max(1, |J_N…J_1|)². Returns the rounding unit of
-  // the step judged (the largest defect/tolerance).
+  // the step judged (the largest defect/tolerance) and sets `worst_step` to its index.
   template <class T, int n>
   static T judge(PerStepCheck<T>& check, const T& h,
-                 const std::vector<Matrix<T, 2 * n, 2 * n>>& jacobians,
-                 const std::vector<T>& sizes) {
+                 const std::vector<Matrix<T, 2 * n, 2 * n>>& jacobians, const std::vector<T>& sizes,
+                 std::size_t& worst_step) {
     using std::max;
     const int N = static_cast<int>(jacobians.size());
     Matrix<T, 2 * n, 2 * n> composition = Matrix<T, 2 * n, 2 * n>::Identity();
@@ -111,7 +216,9 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
       const T defect = symplecticity_defect<T, 2 * n>(jacobians[k]);
       step_tolerance = max(step_tolerance, tolerance);
       largest_defect = max(largest_defect, defect);
-      if (defect / tolerance > worst_ratio) worst_ratio = defect / tolerance, worst_defect = defect, worst_tolerance = tolerance;
+      if (defect / tolerance > worst_ratio)
+        worst_ratio = defect / tolerance, worst_defect = defect, worst_tolerance = tolerance,
+        worst_step = static_cast<std::size_t>(k);
     }
     const T composed = max(T(1), max_entry<T, 2 * n, 2 * n>(composition));
     const T composite_defect = symplecticity_defect<T, 2 * n>(composition);

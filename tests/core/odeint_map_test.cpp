@@ -2,7 +2,8 @@
 // agrees with vivv's own trapezoid variational integrator to working precision, the Jacobian
 // computed by jets through the stepper is its derivative, the symplectic steppers have
 // JᵀΩJ = Ω to working precision and the classical Runge–Kutta method does not (the negative
-// control), and a Lagrangian that is not ½ wᵀMw − V(q) is refused.
+// control), the check symplecticity runs tells a stepper's Jacobian from that of a step of h/2,
+// and a Lagrangian that is not ½ wᵀMw − V(q) is refused.
 #include "core/odeint_map.hpp"
 
 #include "core/del_evolution.hpp"
@@ -124,6 +125,40 @@ TEST(OdeintMapJacobian, IsTheDerivativeOfTheStep) {
           << info.name << ", column " << j;
     }
   }
+}
+
+// The check symplecticity runs on the step it judges (compare_with_differences), in every scalar:
+// each stepper's Jacobian agrees with central differences of its own step on (q, p); the
+// Jacobian of a step of h/2 — the seeded fault that once went unseen — and that of another
+// stepper are rejected.
+TYPED_TEST(OdeintMapTest, TheJacobianCheckTellsTheStepItBelongsTo) {
+  using T = TypeParam;
+  const T h = T(1) / 4;
+  const auto separable = separable_form(this->system, this->initial);
+  Vector<T, 4> y;
+  y << this->initial.q, separable.mass * this->initial.w;
+  auto check = [&](const auto& map, const Matrix<T, 4, 4>& jacobian) {
+    auto on_phase = [&](const Vector<T, 4>& x) {
+      State<T, 2> s;
+      s.q = x.template head<2>();
+      s.w = separable.inverse_mass * x.template tail<2>();
+      const State<T, 2> next = map->step(s, h);
+      Vector<T, 4> out;
+      out << next.q, separable.mass * next.w;
+      return out;
+    };
+    return compare_with_differences<T, 4>(on_phase, y, jacobian, Vector<T, 4>(y.cwiseAbs()));
+  };
+  for (const auto& info : odeint_steppers()) {
+    const auto map = this->stepper(info.name);
+    const auto right = check(map, map->jacobian(this->initial, h));
+    EXPECT_TRUE(right.holds) << info.name << ": " << right.mismatch << " > " << right.allowed;
+    const auto half = check(map, map->jacobian(this->initial, h / 2));
+    EXPECT_FALSE(half.holds) << info.name << ": " << half.mismatch << " <= " << half.allowed;
+  }
+  const auto verlet = this->stepper("velocity_verlet"), rk4 = this->stepper("runge_kutta4");
+  const auto other = check(verlet, rk4->jacobian(this->initial, h));
+  EXPECT_FALSE(other.holds) << other.mismatch << " <= " << other.allowed;
 }
 
 // A magnetic term makes d2L/dw dq nonzero: refused, naming it; the separable system passes.
