@@ -2,7 +2,10 @@
 
 #include <boost/fusion/include/at_c.hpp>
 #include <boost/spirit/home/x3.hpp>
+#include <cctype>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace vivv {
 
@@ -114,9 +117,55 @@ std::string readable(std::string which) {
   return which;
 }
 
+// How deep the grammar recurses on `text`, bounded from above before X3 sees it: X3 (and the
+// interpreter after it) recurse once per level, and a formula of 10⁴ nested parentheses — short
+// enough for a case file — overflowed the stack. A level is an open '(' or '[', and within it
+// each unary '-' or '^' whose operand has not ended yet (a binary operator, ',' or the closing
+// bracket ends the chain at its level: a − b − c is flat, −(−(−x)) and a^b^c are not). Returns
+// where the depth first passes `limit`, or −1.
+int deeper_than(const std::string& text, int limit) {
+  std::vector<int> chain{0};  // per open bracket: unary '-' and '^' pending at that level
+  int depth = 0;
+  char previous = 0, before = 0;  // the last two characters that are not spaces
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == ' ' || c == '\t' || c == '\n' || c == '\r') continue;
+    // The sign of a number's exponent, 1.5e-3, is neither operator.
+    const bool exponent_sign = (c == '+' || c == '-') && (previous == 'e' || previous == 'E') &&
+                               std::isdigit(static_cast<unsigned char>(before));
+    if (exponent_sign) {
+      before = previous, previous = c;
+      continue;
+    }
+    const bool after_operand =
+        previous != 0 && std::string("([,+-*/^").find(previous) == std::string::npos;
+    if (c == '(' || c == '[') {
+      chain.push_back(0);
+      ++depth;
+    } else if ((c == ')' || c == ']') && chain.size() > 1) {
+      depth -= 1 + chain.back();
+      chain.pop_back();
+    } else if (c == '^' || (c == '-' && !after_operand)) {
+      ++chain.back();
+      ++depth;
+    } else if (c == '+' || c == '-' || c == '*' || c == '/' || c == ',') {
+      depth -= chain.back();
+      chain.back() = 0;
+    }
+    if (depth > limit) return static_cast<int>(i);
+    before = previous, previous = c;
+  }
+  return -1;
+}
+
 }  // namespace
 
 FormulaNode parse_formula(const std::string& text) {
+  if (const int where = deeper_than(text, maximum_formula_depth); where >= 0)
+    throw FormulaError(where,
+                       "nested more than " + std::to_string(maximum_formula_depth) +
+                           " levels deep (open parentheses, unary '-' and chains of '^' count): "
+                           "vivv reads formulas up to that depth");
   const char* const begin = text.data();
   const char* first = begin;
   const char* const last = begin + text.size();

@@ -18,8 +18,13 @@
 
 namespace vivv {
 
+// How deep a formula may nest (parentheses, unary '-' and chains of '^' together): the parser
+// and the interpreter recurse once per level, and a bound keeps any text within the stack.
+inline constexpr int maximum_formula_depth = 500;
+
 // The syntax tree of `text`; FormulaError at the first character that does
-// not fit the grammar, saying what was expected there.
+// not fit the grammar, saying what was expected there, or where it nests deeper than
+// maximum_formula_depth.
 FormulaNode parse_formula(const std::string& text);
 
 // "at character 13 of \"(x + y\": expected ')'" — for error messages (positions count from 1).
