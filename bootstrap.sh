@@ -15,7 +15,7 @@ case "$mode" in run|test|sanitize) ;; *) echo "usage: bash bootstrap.sh run|test
 
 # Debian packages vivv builds and tests with (DESIGN §2; nothing else, nothing downloaded).
 packages=(g++ cmake make ninja-build libeigen3-dev libboost-dev libmpfr-dev libgmp-dev nlohmann-json3-dev
-          libgtest-dev libbenchmark-dev python3-jsonschema)
+          libvalijson-dev libgtest-dev libbenchmark-dev python3-jsonschema)
 # Only needed to test: the "browser" tests render report.html in headless Chromium, the
 # "scale" tests start shards with GNU parallel.
 if [ "$mode" = test ]; then packages+=(chromium parallel); fi

@@ -302,13 +302,21 @@ PlotSeries plot_series(const json& series, const std::string& color) {
 
 // Tick positions (log10) over [low, high]: decades, thinned to at most ~7,
 // with 2 and 5 multiples added when fewer than two decades fall in range.
+// A report may hold any decimal ("1e-20000000000" is 2·10¹⁰ decades below 1): the step and the
+// decades are 64-bit, so the count stays at most ~8 whatever the range.
 std::vector<std::pair<double, std::string>> log_ticks(double low, double high) {
   std::vector<std::pair<double, std::string>> ticks;
-  int step = std::max(1, static_cast<int>(std::ceil((high - low) / 7)));
-  for (int d = static_cast<int>(std::ceil(low / step)) * step; d <= high; d += step)
-    ticks.push_back({d, "10<tspan dy=\"-5\" font-size=\"9\">" + std::to_string(d) + "</tspan>"});
+  constexpr double largest = 1e15;  // decades beyond this are not on any page
+  if (!std::isfinite(low) || !std::isfinite(high) || low > high || std::abs(low) > largest ||
+      std::abs(high) > largest)
+    return ticks;
+  const long long step = std::max(1LL, static_cast<long long>(std::ceil((high - low) / 7)));
+  for (long long d = static_cast<long long>(std::ceil(low / static_cast<double>(step))) * step;
+       d <= high; d += step)
+    ticks.push_back({static_cast<double>(d),
+                     "10<tspan dy=\"-5\" font-size=\"9\">" + std::to_string(d) + "</tspan>"});
   if (ticks.size() < 2) {
-    for (int d = static_cast<int>(std::floor(low)); d <= std::ceil(high); ++d)
+    for (long long d = static_cast<long long>(std::floor(low)); d <= std::ceil(high); ++d)
       for (int k : {2, 5}) {
         double x = d + std::log10(static_cast<double>(k));
         if (x >= low && x <= high)

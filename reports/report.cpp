@@ -20,6 +20,7 @@
 #include "cases/case_file.hpp"
 #include "reports/html_report.hpp"
 #include "reports/junit_report.hpp"
+#include "reports/schema_check.hpp"
 #include "reports/signals.hpp"
 
 namespace vivv {
@@ -239,6 +240,14 @@ std::optional<std::vector<std::size_t>> shard_positions(
     if (auto [it, fresh] = shards.emplace(index, file); !fresh)
       throw ReportError(file + ": run.shard: shard " + std::to_string(index) + " of " + std::to_string(count) +
                         " is also " + it->second);
+    const nlohmann::json overrides = report["run"].value("overrides", nlohmann::json());
+    const nlohmann::json reference_overrides =
+        first->second["run"].value("overrides", nlohmann::json());
+    if (overrides != reference_overrides)
+      throw ReportError(
+          file + ": run.overrides: " + overrides.dump() + ", while " + first->first + " ran with " +
+          reference_overrides.dump() +
+          ": the shards of one split must run with the same --digits, --scalar and --refine");
     if (shard.at("suite") != reference.at("suite") || shard.at("suite").size() != size)
       throw ReportError(file + ": run.shard.suite: not the list of cases " + first->first +
                         " was split from: every shard must be given the same case files in the same order");
@@ -301,10 +310,15 @@ nlohmann::json merge_reports(const std::vector<std::pair<std::string, nlohmann::
     for (std::size_t i = 0; i < positions->size(); ++i) by_position[(*positions)[i]] = cases[i];
     cases = by_position;
   }
-  return {{"schema", report_schema},
-          {"run", run_json},
-          {"summary", verdict_counts(cases)},
-          {"cases", cases}};
+  nlohmann::json merged = {{"schema", report_schema},
+                           {"run", run_json},
+                           {"summary", verdict_counts(cases)},
+                           {"cases", cases}};
+  // Never write a report that breaks the schema: every input followed it, so this is vivv's
+  // own error, but it is caught before any file is written.
+  if (auto violation = schema_violation(merged))
+    throw ReportError("the merged report: " + *violation + " (reports/schema.json)");
+  return merged;
 }
 
 namespace {
@@ -341,6 +355,32 @@ void check_report_shape(const nlohmann::json& report, const std::string& path) {
   }
 }
 
+// What vivv run writes holds together: a claim that passed (or xpassed) has no series that
+// fails, and the summary counts the claims' verdicts. A verdict edited by hand, or a summary
+// left from another report, breaks one of them: refused, naming where.
+void check_verdicts_agree(const nlohmann::json& report, const std::string& path) {
+  const nlohmann::json& cases = report.at("cases");
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    for (std::size_t k = 0; k < cases[i]["claims"].size(); ++k) {
+      const nlohmann::json& claim = cases[i]["claims"][k];
+      const std::string verdict = claim["verdict"].get<std::string>();
+      if (verdict != "pass" && verdict != "xpass") continue;
+      const nlohmann::json series = claim.value("series", nlohmann::json::array());
+      for (std::size_t j = 0; j < series.size(); ++j)
+        if (series[j].is_object() &&
+            series[j].value("holds", nlohmann::json()) == nlohmann::json(false))
+          throw ReportError(
+              path + ": cases[" + std::to_string(i) + "].claims[" + std::to_string(k) +
+              "].verdict: \"" + verdict + "\" while its series[" + std::to_string(j) +
+              "] does not hold: the report was edited or damaged after vivv wrote it");
+    }
+  const nlohmann::json counted = verdict_counts(cases);
+  if (report.contains("summary") && report["summary"] != counted)
+    throw ReportError(path + ": summary: " + report["summary"].dump() +
+                      " does not count the claims' verdicts " + counted.dump() +
+                      ": the report was edited or damaged after vivv wrote it");
+}
+
 }  // namespace
 
 nlohmann::json read_report(const std::string& path) {
@@ -362,6 +402,10 @@ nlohmann::json read_report(const std::string& path) {
       !report["run"].is_object())
     throw ReportError(path + ": expected the fields \"cases\" (a list) and \"run\" (an object)");
   check_report_shape(report, path);
+  if (auto violation = schema_violation(report))
+    throw ReportError(path + ": " + *violation +
+                      " (reports/schema.json): a damaged or edited report");
+  check_verdicts_agree(report, path);
   return report;
 }
 
@@ -511,12 +555,18 @@ void print_claims_table(std::ostream& out, const nlohmann::json& report) {
   for (const auto& c : report["cases"]) {
     const nlohmann::json sweep = c.value("sweep", nlohmann::json::object());
     if (!sweep.value("refine", false)) continue;
+    // Read through value(): a const json's operator[] on a missing key is undefined behaviour.
     auto range = [](const nlohmann::json& steps) {
-      return steps.empty() ? std::string("-")
-                           : std::to_string(steps.front().get<int>()) + " … " + std::to_string(steps.back().get<int>());
+      if (!steps.is_array() || steps.empty() || !steps.front().is_number_integer() ||
+          !steps.back().is_number_integer())
+        return std::string("-");
+      return std::to_string(steps.front().get<long long>()) + " … " +
+             std::to_string(steps.back().get<long long>());
     };
-    out << "sweep of " << c["name"].get<std::string>() << ": N = " << range(sweep["steps_used"]) << " (requested "
-        << range(sweep["requested_steps"]) << "); stopped: " << sweep.value("stopped", std::string()) << "\n";
+    out << "sweep of " << c.value("name", std::string())
+        << ": N = " << range(sweep.value("steps_used", nlohmann::json::array())) << " (requested "
+        << range(sweep.value("requested_steps", nlohmann::json::array()))
+        << "); stopped: " << sweep.value("stopped", std::string()) << "\n";
   }
   out << "claims: " << summary_text(report["summary"]) << "\n";
 }
