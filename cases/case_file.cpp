@@ -1,6 +1,7 @@
 #include "cases/case_file.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -33,6 +34,32 @@ CaseError::CaseError(const std::string& file, const std::string& field, const st
                          excerpt(message, 2000)),
       file(file),
       field(field) {}
+
+void check_precision_options(const CaseSpec& spec, const std::optional<std::string>& scalar,
+                             std::optional<int> digits) {
+  const std::string effective = scalar ? *scalar : spec.scalar;
+  const std::string option = scalar ? "--scalar " + effective : "\"scalar\": \"" + effective + "\"";
+  if (digits && effective != "mpfr")
+    throw CaseError(spec.file, "--digits",
+                    "sets the MPFR working precision, and this case runs in \"" + effective +
+                        "\" (" + option + ")");
+  if (effective != "mpfr" && spec.dimension > 2)
+    throw CaseError(spec.file, "--scalar",
+                    "a system of " + std::to_string(spec.dimension) +
+                        " coordinates runs in mpfr only, not in " + option +
+                        " (double, long double and float128 are built for 1 and 2 coordinates)");
+  const bool leak =
+      std::find(spec.claims.begin(), spec.claims.end(), "precision-leak") != spec.claims.end();
+  if (leak && effective != "mpfr")
+    throw CaseError(
+        spec.file, "--scalar",
+        "precision-leak runs the case again at twice its digits: it needs mpfr, not " + option);
+  if (leak && digits && 2 * *digits > maximum_digits)
+    throw CaseError(spec.file, "--digits",
+                    "precision-leak runs the case again at twice its digits, and --digits " +
+                        std::to_string(*digits) + " would make that more than " +
+                        std::to_string(maximum_digits));
+}
 
 std::vector<std::string> system_names() {
   std::vector<std::string> names;
@@ -123,6 +150,44 @@ std::string join(const std::vector<std::string>& items) {
   return out;
 }
 
+// Edit distance between two names, case, '-' and '_' ignored ("global_order" is "global-order").
+std::size_t name_distance(const std::string& a, const std::string& b) {
+  auto normal = [](const std::string& text) {
+    std::string out;
+    for (char c : text)
+      out += c == '_' ? '-' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return out;
+  };
+  const std::string x = normal(a), y = normal(b);
+  std::vector<std::size_t> row(y.size() + 1);
+  for (std::size_t j = 0; j <= y.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= x.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= y.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (x[i - 1] == y[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[y.size()];
+}
+
+// "; did you mean 'steps'?" when one of `choices` is within `limit` edits of `name` (by default
+// a third of the name's length, at least 2), the nearest; else nothing.
+std::string did_you_mean(const std::string& name, const std::vector<std::string>& choices,
+                         std::size_t limit = 0) {
+  if (name.size() > 200) return "";
+  if (limit == 0) limit = std::max<std::size_t>(2, name.size() / 3);
+  const std::string* best = nullptr;
+  std::size_t best_distance = limit + 1;
+  for (const auto& choice : choices) {
+    const std::size_t d = name_distance(name, choice);
+    if (d < best_distance && choice != name) best = &choice, best_distance = d;
+  }
+  return best ? "; did you mean '" + *best + "'?" : "";
+}
+
 // Field-by-field reader for one JSON object: it knows the file and the path
 // of the object, and at the end rejects any field it was not asked about.
 class Reader {
@@ -144,7 +209,17 @@ class Reader {
     return json_.contains(key);
   }
   const nlohmann::json& get(const std::string& key) {
-    if (!has(key)) fail(key, "missing");
+    if (!has(key)) {
+      // A misspelt field ("step" for "steps") is named as what it is, not only as a missing one:
+      // a present field not read yet within a quarter of the name's length (at least 1) of edits.
+      // (Stricter than for values: a field not read yet may still be a valid one.)
+      const std::size_t close = std::max<std::size_t>(1, key.size() / 4);
+      for (const auto& [present, value] : json_.items())
+        if (!known_.count(present) && present.size() >= 3 &&
+            !did_you_mean(present, {key}, close).empty())
+          fail(present, "unknown field" + did_you_mean(present, {key}, close));
+      fail(key, "missing");
+    }
     return json_.at(key);
   }
   Reader object(const std::string& key) { return Reader(get(key), file_, field(key)); }
@@ -209,7 +284,8 @@ class Reader {
   std::string one_of(const std::string& key, const std::vector<std::string>& choices) {
     std::string value = string(key);
     if (std::find(choices.begin(), choices.end(), value) == choices.end())
-      fail(key, "unknown name '" + echo(value) + "'; expected one of: " + join(choices));
+      fail(key, "unknown name '" + echo(value) + "'" + did_you_mean(value, choices) +
+                    "; expected one of: " + join(choices));
     return value;
   }
   std::vector<std::string> strings(const std::string& key) {
@@ -225,7 +301,9 @@ class Reader {
   // Every field present must have been read.
   void finish() const {
     for (const auto& [key, value] : json_.items())
-      if (!known_.count(key)) fail(key, "unknown field");
+      if (!known_.count(key))
+        fail(key, "unknown field" +
+                      did_you_mean(key, std::vector<std::string>(known_.begin(), known_.end())));
   }
   const std::string& file() const { return file_; }
 
@@ -647,7 +725,9 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
     const auto& id = spec.claims[i];
     std::string where = "claims[" + std::to_string(i) + "]";
     if (std::find(claim_ids().begin(), claim_ids().end(), id) == claim_ids().end())
-      throw CaseError(file, where, "unknown claim '" + id + "'; expected one of: " + join(claim_ids()));
+      throw CaseError(file, where,
+                      "unknown claim '" + echo(id) + "'" + did_you_mean(id, claim_ids()) +
+                          "; expected one of: " + join(claim_ids()));
     if (id == "twin-term-invariance" && !spec.discretization.twin)
       throw CaseError(file, where, "twin-term-invariance needs discretization.twin");
     if (id == "mismatched-legendre" && !spec.past_discretization)

@@ -116,6 +116,14 @@ struct CaseSpec {
 // that occurs twice in one object).
 CaseSpec read_case_file(const std::string& path);
 
+// What `vivv run --scalar S --digits D` would make of `spec`: the checks read_case_file makes
+// of its own "scalar" and "digits" (digits only in MPFR; 3 and 4 coordinates in MPFR only;
+// precision-leak in MPFR, at twice the digits) made again for the overrides, so that a run
+// refuses every case it cannot compute before it computes any. Throws CaseError naming the
+// case file and the option.
+void check_precision_options(const CaseSpec& spec, const std::optional<std::string>& scalar,
+                             std::optional<int> digits);
+
 // JSON from `in`, refusing nesting deeper than maximum_json_depth and
 // duplicate keys; CaseError naming `where` otherwise.
 inline constexpr int maximum_json_depth = 64;

@@ -10,12 +10,14 @@
 // claim fails, errs or passes although marked xfail, 2 bad input (the message
 // names the file, the field and what was expected; no report is written).
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -228,10 +230,10 @@ nlohmann::json run_one(const CaseSpec& spec, const RunOptions& options) {
 volatile sig_atomic_t interrupted_by = 0;
 extern "C" void note_interrupt(int signal) { interrupted_by = signal; }
 
-// While alive (the --jobs parent), SIGINT, SIGTERM and SIGHUP are noted instead of ending the
-// process, so that it can stop its workers and remove its temporary directory first; a signal
-// ignored when vivv started stays ignored. restore() gives back the dispositions vivv started
-// with (to the workers, and before the parent ends by the signal it noted).
+// While alive (the --jobs parent), SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1 and SIGUSR2 are noted
+// instead of ending the process, so that it can stop its workers and remove its temporary directory
+// first; a signal ignored when vivv started stays ignored. restore() gives back the dispositions
+// vivv started with (to the workers, and before the parent ends by the signal it noted).
 class NoteInterrupts {
  public:
   NoteInterrupts() {
@@ -252,8 +254,10 @@ class NoteInterrupts {
   }
 
  private:
-  std::array<int, 3> signals_{SIGINT, SIGTERM, SIGHUP};
-  std::array<struct sigaction, 3> previous_{};
+  // Every signal whose default action ends the process and that a user or a job scheduler
+  // sends: SIGQUIT and SIGUSR1 once orphaned the workers and left the directory behind.
+  std::array<int, 6> signals_{SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2};
+  std::array<struct sigaction, 6> previous_{};
 };
 
 // Runs the cases in up to `jobs` worker processes (MPFR's working precision
@@ -271,6 +275,7 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
     throw BadInput("cannot create a private temporary directory under " + fs::temp_directory_path().string());
   fs::path work = work_template;
   NoteInterrupts notes;
+  const pid_t parent = getpid();
   std::map<pid_t, std::size_t> running;
   std::string failures;
   std::size_t next = 0;
@@ -285,6 +290,13 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
     if (pid <= 0) return;  // interrupted
     std::size_t index = running.at(pid);
     running.erase(pid);
+    if (WIFSIGNALED(status)) {  // no message of its own: say what ended it
+      const int signal = WTERMSIG(status);
+      failures += specs[index].file + ": its worker process was ended by signal " +
+                  std::to_string(signal) + " (" + strsignal(signal) + ")" +
+                  (signal == SIGKILL ? ", perhaps by the kernel for want of memory" : "") + "\n";
+      return;
+    }
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
       failures += specs[index].file + " failed in its worker process\n";
       return;
@@ -301,7 +313,13 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
         // The worker starts with vivv's own dispositions before any signal reaches it.
         DeferInterrupts defer;
         pid = fork();
-        if (pid == 0) notes.restore();
+        if (pid == 0) {
+          notes.restore();
+          // A worker never outlives the run: when the parent ends, however (SIGKILL included),
+          // the kernel sends the worker SIGTERM; a parent already gone ends the worker now.
+          prctl(PR_SET_PDEATHSIG, SIGTERM);
+          if (getppid() != parent) std::_Exit(128 + SIGTERM);
+        }
       }
       if (pid == 0) {
         int code = 0;
@@ -312,7 +330,18 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
         }
         std::_Exit(code);
       }
-      if (pid < 0) throw std::runtime_error("fork failed");
+      if (pid < 0) {
+        // No worker can start (the process limit): stop those running, remove their directory,
+        // and say so; nothing is left behind.
+        const int reason = errno;
+        for (const auto& [running_pid, index] : running) kill(running_pid, SIGTERM);
+        for (const auto& [running_pid, index] : running) waitpid(running_pid, nullptr, 0);
+        std::error_code ignored;
+        fs::remove_all(work, ignored);
+        throw BadInput(std::string("cannot start a worker process for --jobs ") +
+                       std::to_string(options.jobs) + ": " + std::strerror(reason) +
+                       " (a lower --jobs, or the process limit ulimit -u, decides)");
+      }
       running[pid] = next++;
     } else {
       reap();
@@ -345,6 +374,15 @@ void check_output_directory(const std::string& out) {
     throw BadInput("--out: '" + out + "' exists and is not a directory");
   fs::create_directories(out, error);
   if (error) throw BadInput("--out: cannot create '" + out + "': " + error.message());
+  // The three files are replaced by renames at the end: one that is a directory (or a device, a
+  // FIFO) would fail there, after every case computed and with the others already replaced.
+  for (const char* name : {"report.json", "report.html", "junit.xml"}) {
+    const fs::path file = fs::path(out) / name;
+    const fs::file_status status = fs::symlink_status(file, error);
+    if (fs::exists(status) && !fs::is_regular_file(status) && !fs::is_symlink(status))
+      throw BadInput("--out: '" + file.string() +
+                     "' exists and is not a regular file: vivv replaces it");
+  }
   std::string probe = (fs::path(out) / ".vivv-write-test-XXXXXX").string();
   DeferInterrupts defer;
   int fd = mkstemp(probe.data());
@@ -364,6 +402,8 @@ int command_run(const std::vector<std::string>& args, const std::string& command
     if (!fresh)
       throw CaseError(file, "name", "'" + specs.back().name + "' is also the name of " + it->second);
   }
+  // The options against every case before any computes: a case they cannot run refuses the run.
+  for (const auto& spec : specs) check_precision_options(spec, options.scalar, options.digits);
   // Every case file is read and checked above, so that each shard refuses the same bad input;
   // a shard then computes its own positions.
   std::vector<std::size_t> positions;
@@ -380,6 +420,10 @@ int command_run(const std::vector<std::string>& args, const std::string& command
   }
   nlohmann::json report = assemble_report(cases, {command_line, library_versions()});
   report["run"]["case_paths"] = case_paths;
+  report["run"]["overrides"] = {
+      {"digits", options.digits ? nlohmann::json(*options.digits) : nlohmann::json()},
+      {"scalar", options.scalar ? nlohmann::json(*options.scalar) : nlohmann::json()},
+      {"refine", options.refine}};
   if (options.shard) {
     nlohmann::json suite = nlohmann::json::array();  // every shard's check that it split the same list
     for (const auto& spec : specs) suite.push_back(spec.name);
@@ -464,12 +508,48 @@ int command_list() {
 }
 
 int usage(std::ostream& out, int code) {
-  out << "usage: vivv run [CASE.json ...] [--out DIR] [--digits D] [--scalar S] [--jobs J] [--shard I/N] [--refine]\n"
+  out << "usage: vivv run [CASE.json ...] [--out DIR] [--digits D] [--scalar S] [--jobs J] "
+         "[--shard I/N] [--refine]\n"
          "                [--max-seconds S] [--progress|--quiet]\n"
          "       vivv report REPORT.json [MORE.json ...] --out DIR\n"
          "       vivv list\n"
-         "       vivv bench reference|del\n";
+         "       vivv bench reference|del\n"
+         "       vivv --version\n"
+         "run `vivv run --help` for what each option does\n";
   return code;
+}
+
+// `vivv run --help`: every option and what it does.
+int run_help(std::ostream& out) {
+  out << "vivv run [CASE.json ...] [options]: compute each case's claims and write "
+         "DIR/report.json,\n"
+         "report.html and junit.xml (the default suite when no case file is given). Exit 0 when "
+         "every\n"
+         "claim passes (or fails as its case expects), 1 when one fails, is inconclusive, errs or "
+         "passes\n"
+         "unexpectedly, 2 for bad input (nothing written).\n"
+         "  --out DIR          where the three files go (default vivv-report); checked before any "
+         "case runs\n"
+         "  --digits D         MPFR working precision in decimal digits, 20 … "
+      << maximum_digits
+      << ", for every case\n"
+         "                     (overrides the cases' \"digits\"; refused for a case that runs in "
+         "another scalar)\n"
+         "  --scalar S         double, \"long double\", float128 or mpfr for every case (overrides "
+         "\"scalar\")\n"
+         "  --jobs J           run up to J cases at once, each in its own process (1 … 64)\n"
+         "  --shard I/N        compute only cases I, I + N, I + 2N, … of the list (1 <= I <= N <= "
+         "1000);\n"
+         "                     `vivv report` merges the N shards' reports into the suite's\n"
+         "  --refine           halve h until every fitted order settles, within a budget; the "
+         "report\n"
+         "                     says why the sweep stopped\n"
+         "  --max-seconds S    wall-time budget of each case; past it the case is refused naming "
+         "its phase\n"
+         "  --progress         progress lines on stderr (the default on a terminal)\n"
+         "  --quiet            no progress lines\n"
+         "  --help, -h         this text\n";
+  return exit_pass;
 }
 
 }  // namespace
@@ -490,7 +570,7 @@ int main(int argc, char** argv) {
     // `vivv run --help`, `vivv report -h`, ...: the usage, exit 0.
     if (std::find_if(args.begin(), args.end(), [](const std::string& a) { return a == "--help" || a == "-h"; }) !=
         args.end())
-      return usage(std::cout, exit_pass);
+      return command == "run" ? run_help(std::cout) : usage(std::cout, exit_pass);
     if (command == "run") return command_run(args, command_line);
     if (command == "list") {
       if (!args.empty()) return bad_input("vivv list takes no arguments, got '" + args.front() + "'");
@@ -506,6 +586,10 @@ int main(int argc, char** argv) {
     }
     if (command == "report") return command_report(args, command_line);
     if (command == "--help" || command == "help") return usage(std::cout, exit_pass);
+    if (command == "--version" || command == "version") {
+      std::cout << library_versions() << "\n";
+      return exit_pass;
+    }
     std::cerr << "vivv: unknown command '" << command << "'\n";
     return usage(std::cerr, exit_bad_input);
   } catch (const nlohmann::json::exception& error) {  // a report.json of the wrong shape

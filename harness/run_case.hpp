@@ -24,7 +24,8 @@ CaseResult run_case(const CaseSpec& spec, std::optional<int> digits, bool refine
 // The first order-fitted series that has not settled — its two finest
 // pairwise orders and its fitted order not all within tolerance/4 of each
 // other, or an exact prediction outside the fit's interval while the finest
-// order is within the tolerance of it (more data decides), and its smallest h
+// order is within the tolerance of it but not within a quarter of it (more data
+// decides), and its smallest h
 // not at the floor — in words; none when all have.
 // With --refine, the fit also drops leading points whose pairwise order is
 // more than tolerance/4 from the finest (FitOptions::asymptote_tolerance).

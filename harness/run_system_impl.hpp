@@ -135,10 +135,11 @@ void run_on_system(const System& system, CaseSpec& spec, CaseResult& result, boo
     // --refine: halve h (double N) until every order-fitted series settles, within the budget.
     auto unsettled = unsettled_series(result.claims, context.order_tolerance);
     if (!unsettled) {
-      result.sweep.stopped = "every fitted series settled (its two finest pairwise orders and its fitted "
-                             "order within a quarter of the order tolerance, and an exact prediction inside "
-                             "the fit's interval unless the finest orders are further than the tolerance from "
-                             "it) or reached the floor";
+      result.sweep.stopped =
+          "every fitted series settled (its two finest pairwise orders and its fitted "
+          "order within a quarter of the order tolerance of each other, and an exact "
+          "prediction within a quarter of the tolerance of the finest order or inside the "
+          "fit's interval — or further than the tolerance from it) or reached the floor";
       break;
     }
     const long next = 2L * spec.steps.back();

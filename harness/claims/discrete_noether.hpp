@@ -121,6 +121,65 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
           context.spec.file, "system.symmetry",
           "the symmetry generator vanishes at the initial state: its momentum map J = p·xi is 0 "
           "whatever the integrator does, so conserving it proves nothing");
+    check_invariance(context);
+  }
+
+  // L itself must be invariant under the lifted flow of ξ: δL = ∂L/∂q·ξ + ∂L/∂w·(Dξ·w) = 0 on
+  // all of TQ, checked at the initial state, the reference state at T/2 and at T (one state can
+  // fool it: (−y, 2x) is not a symmetry of Kepler, yet δL = 0 at a periapsis on the x axis),
+  // each relative to the size of its terms (so a non-symmetry scaled by 10⁻⁴⁰ is as wrong as
+  // one of unit size). Otherwise p·ξ is not conserved by the flow, and a drift would be blamed
+  // on L_d. ∂L/∂q, ∂L/∂w by automatic differentiation; Dξ·w by central differences of ξ along w
+  // (relative error about ε^(2/3)), so the allowance is 10⁴·ε^(2/3).
+  template <LagrangianSystem System>
+  static void check_invariance(const CaseContext<System>& context) {
+    using T = typename System::Scalar;
+    const T half = context.final_time / 2;
+    const std::vector<std::pair<std::string, State<T, System::dimension>>> states = {
+        {"the initial state", context.initial},
+        {"t = T/2 (" + format_scalar(half, 6) + ")", context.exact(half)},
+        {"t = T", context.final_state}};
+    for (const auto& [where, state] : states) check_invariance_at(context, state, where);
+  }
+
+  template <LagrangianSystem System>
+  static void check_invariance_at(const CaseContext<System>& context,
+                                  const State<typename System::Scalar, System::dimension>& state,
+                                  const std::string& where) {
+    using T = typename System::Scalar;
+    constexpr int n = System::dimension;
+    using std::abs, std::max, std::pow;
+    const Vector<T, n>& q = state.q;
+    const Vector<T, n>& w = state.w;
+    const Vector<T, n> xi = symmetry_generator(context.system, q);
+    const auto d = lagrangian_derivatives(context.system, q, w);
+    Vector<T, n> along = Vector<T, n>::Zero();  // Dξ(q)·w
+    const T speed = max_norm<T, n>(w);
+    if (speed > 0) {
+      const T length = max_norm<T, n>(q) > 0 ? T(max_norm<T, n>(q)) : T(1);
+      const T s = pow(epsilon<T>(), T(1) / 3) * length / speed;
+      const Vector<T, n> up = q + s * w, down = q - s * w;
+      along = (symmetry_generator(context.system, up) - symmetry_generator(context.system, down)) /
+              (up - down).dot(w) * w.dot(w);
+    }
+    T variation = 0, size = 0;
+    for (int i = 0; i < n; ++i) {
+      variation += d.dL_dq[i] * xi[i] + d.dL_dw[i] * along[i];
+      size += abs(T(d.dL_dq[i] * xi[i])) + abs(T(d.dL_dw[i] * along[i]));
+    }
+    if (!(size > 0)) return;  // every term vanishes here: nothing to compare
+    const T allowed = 10000 * pow(epsilon<T>(), T(2) / 3);
+    if (!(abs(variation) <= allowed * size))
+      throw CaseError(
+          context.spec.file, "system.symmetry",
+          "L itself is not invariant under the declared generator: dL/dq·xi + dL/dw·(Dxi·w) = " +
+              format_scalar(variation, 3) + " at " + where + ", " +
+              format_scalar(T(abs(variation) / size), 3) +
+              " of the size of its terms (a symmetry gives 0; allowed " +
+              format_scalar(allowed, 2) +
+              " of that size): the flow itself does not conserve p·xi, so its drift would be "
+              "blamed on "
+              "L_d");
   }
 };
 
