@@ -173,7 +173,7 @@ std::size_t name_distance(const std::string& a, const std::string& b) {
   return row[y.size()];
 }
 
-// "; did you mean 'steps'?" when one of `choices` is within `limit` edits of `name` (by default
+// " (did you mean 'steps'?)" when one of `choices` is within `limit` edits of `name` (by default
 // a third of the name's length, at least 2), the nearest; else nothing.
 std::string did_you_mean(const std::string& name, const std::vector<std::string>& choices,
                          std::size_t limit = 0) {
@@ -185,7 +185,7 @@ std::string did_you_mean(const std::string& name, const std::vector<std::string>
     const std::size_t d = name_distance(name, choice);
     if (d < best_distance && choice != name) best = &choice, best_distance = d;
   }
-  return best ? "; did you mean '" + *best + "'?" : "";
+  return best ? " (did you mean '" + *best + "'?)" : "";
 }
 
 // Field-by-field reader for one JSON object: it knows the file and the path

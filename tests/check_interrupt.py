@@ -3,11 +3,14 @@
 
     check_interrupt.py VIVV OUT QUICK.json SLOW.json [SLOW2.json]
 
-For SIGINT and SIGTERM, serial and with --jobs 2: a quick run writes a report into a
-directory; a slow run into the same directory is interrupted after 1.5 s (while it computes).
-Then the process must have ended by that signal, report.json, report.html and junit.xml must
-be byte for byte the earlier ones, the directory must hold nothing else, its private $TMPDIR
-must be empty, and no worker may survive. Exit 0 when every combination holds, 1 otherwise.
+For SIGINT and SIGTERM, serial and with --jobs 2, and SIGQUIT and SIGUSR1 with --jobs 2: a
+quick run writes a report into a directory; a slow run into the same directory is interrupted
+after 1.5 s (while it computes). Then the process must have ended by that signal, report.json,
+report.html and junit.xml must be byte for byte the earlier ones, the directory must hold
+nothing else, its private $TMPDIR must be empty, and no worker may survive. SIGKILL with --jobs
+2 cannot be handled: the report must still be the earlier one and no worker may survive (the
+kernel ends them, PR_SET_PDEATHSIG); the private directory may stay. Exit 0 when every
+combination holds, 1 otherwise.
 """
 import os
 import shutil
@@ -30,7 +33,7 @@ def check(vivv, root, quick, slow, sig, jobs):
     subprocess.run([vivv, "run", quick, "--out", out, "--quiet"], env=env, check=True, stdout=subprocess.DEVNULL)
     before = snapshot(out)
     process = subprocess.Popen([vivv, "run", *slow, "--jobs", str(jobs), "--out", out, "--quiet"], env=env,
-                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, preexec_fn=default_signals)
     time.sleep(1.5)
     if process.poll() is not None:
         return ["%s: the slow run ended before it was interrupted (exit %d)" % (label, process.returncode)]
@@ -47,14 +50,24 @@ def check(vivv, root, quick, slow, sig, jobs):
     after = snapshot(out)
     if after != before:
         problems.append("%s: the output directory changed: %s -> %s" % (label, sorted(before), sorted(after)))
-    if os.listdir(tmp):
+    if os.listdir(tmp) and sig != signal.SIGKILL:
         problems.append("%s: left in $TMPDIR: %s" % (label, os.listdir(tmp)))
+    time.sleep(0.5 if sig == signal.SIGKILL else 0)  # the kernel's SIGTERM to the orphans
     survivors = vivv_processes(vivv, out)  # by its --out: other tests may run the same cases
     if survivors:
         problems.append("%s: workers still running: %s" % (label, survivors))
         for pid in survivors:
             os.kill(pid, signal.SIGKILL)
     return problems
+
+
+def default_signals():
+    """In the child: the default action for the signals sent (a background shell may have left
+    SIGINT and SIGQUIT ignored, and vivv keeps an ignored signal ignored), and no core file."""
+    import resource
+    resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+    for sig in (signal.SIGINT, signal.SIGQUIT, signal.SIGTERM, signal.SIGUSR1):
+        signal.signal(sig, signal.SIG_DFL)
 
 
 def vivv_processes(vivv, argument):
@@ -78,9 +91,10 @@ def main(argv):
         return 2
     vivv, root, quick, slow = argv[1], argv[2], argv[3], argv[4:]
     problems = []
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        for jobs in (1, 2):
-            problems += check(vivv, os.path.join(root, "%s-%d" % (sig.name, jobs)), quick, slow, sig, jobs)
+    combinations = [(signal.SIGINT, 1), (signal.SIGINT, 2), (signal.SIGTERM, 1), (signal.SIGTERM, 2),
+                    (signal.SIGQUIT, 2), (signal.SIGUSR1, 2), (signal.SIGKILL, 2)]
+    for sig, jobs in combinations:
+        problems += check(vivv, os.path.join(root, "%s-%d" % (sig.name, jobs)), quick, slow, sig, jobs)
     for problem in problems:
         print(problem)
     print("interrupt: %s" % ("ok" if not problems else "%d problems" % len(problems)))
