@@ -4,6 +4,8 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <memory>
 #include <optional>
 #include <regex>
 #include <set>
@@ -34,32 +36,6 @@ CaseError::CaseError(const std::string& file, const std::string& field, const st
                          excerpt(message, 2000)),
       file(file),
       field(field) {}
-
-void check_precision_options(const CaseSpec& spec, const std::optional<std::string>& scalar,
-                             std::optional<int> digits) {
-  const std::string effective = scalar ? *scalar : spec.scalar;
-  const std::string option = scalar ? "--scalar " + effective : "\"scalar\": \"" + effective + "\"";
-  if (digits && effective != "mpfr")
-    throw CaseError(spec.file, "--digits",
-                    "sets the MPFR working precision, and this case runs in \"" + effective +
-                        "\" (" + option + ")");
-  if (effective != "mpfr" && spec.dimension > 2)
-    throw CaseError(spec.file, "--scalar",
-                    "a system of " + std::to_string(spec.dimension) +
-                        " coordinates runs in mpfr only, not in " + option +
-                        " (double, long double and float128 are built for 1 and 2 coordinates)");
-  const bool leak =
-      std::find(spec.claims.begin(), spec.claims.end(), "precision-leak") != spec.claims.end();
-  if (leak && effective != "mpfr")
-    throw CaseError(
-        spec.file, "--scalar",
-        "precision-leak runs the case again at twice its digits: it needs mpfr, not " + option);
-  if (leak && digits && 2 * *digits > maximum_digits)
-    throw CaseError(spec.file, "--digits",
-                    "precision-leak runs the case again at twice its digits, and --digits " +
-                        std::to_string(*digits) + " would make that more than " +
-                        std::to_string(maximum_digits));
-}
 
 std::vector<std::string> system_names() {
   std::vector<std::string> names;
@@ -192,10 +168,17 @@ std::string did_you_mean(const std::string& name, const std::vector<std::string>
 // of the object, and at the end rejects any field it was not asked about.
 class Reader {
  public:
-  Reader(const nlohmann::json& json, std::string file, std::string path)
-      : json_(json), file_(std::move(file)), path_(std::move(path)) {
+  using Decimals = std::vector<std::pair<std::string, std::string>>;
+  Reader(const nlohmann::json& json, std::string file, std::string path,
+         std::shared_ptr<Decimals> decimals = std::make_shared<Decimals>())
+      : json_(json),
+        file_(std::move(file)),
+        path_(std::move(path)),
+        decimals_(std::move(decimals)) {
     if (!json_.is_object()) fail("", "expected a JSON object");
   }
+  // Every decimal read so far by this reader and those it made, with its field.
+  const Decimals& decimals() const { return *decimals_; }
 
   [[noreturn]] void fail(const std::string& key, const std::string& message) const {
     throw CaseError(file_, field(key), message);
@@ -222,7 +205,7 @@ class Reader {
     }
     return json_.at(key);
   }
-  Reader object(const std::string& key) { return Reader(get(key), file_, field(key)); }
+  Reader object(const std::string& key) { return Reader(get(key), file_, field(key), decimals_); }
 
   // A number written as a decimal string, e.g. "1.1" or "-2.5e-3".
   std::string decimal(const std::string& key) { return decimal_value(get(key), field(key)); }
@@ -241,6 +224,7 @@ class Reader {
     if (!decimal_value_of(text))
       throw CaseError(file_, where, "the number \"" + echo(text) + "\" is outside the range vivv accepts "
                                     "(about 1e-4900 to 1e4900)");
+    decimals_->emplace_back(where, text);
     return text;
   }
   // A number in [0, 1] written as a decimal string or a fraction "p/q".
@@ -310,6 +294,7 @@ class Reader {
  private:
   const nlohmann::json& json_;
   std::string file_, path_;
+  std::shared_ptr<Decimals> decimals_;
   std::set<std::string> known_;
 };
 
@@ -861,6 +846,8 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
     spec.refine = refine.get<bool>();
   }
   reader.finish();
+  spec.decimals = reader.decimals();
+  check_precision_options(spec, std::nullopt, std::nullopt);
   return spec;
 }
 
@@ -893,6 +880,46 @@ CaseSpec read_case_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw CaseError(path, "", "cannot open the case file");
   return parse_case(parse_json_strictly(in, path), path);
+}
+
+void check_precision_options(const CaseSpec& spec, const std::optional<std::string>& scalar,
+                             std::optional<int> digits) {
+  const std::string effective = scalar ? *scalar : spec.scalar;
+  const std::string option = scalar ? "--scalar " + effective : "\"scalar\": \"" + effective + "\"";
+  if (digits && effective != "mpfr")
+    throw CaseError(spec.file, "--digits",
+                    "sets the MPFR working precision, and this case runs in \"" + effective +
+                        "\" (" + option + ")");
+  if (effective != "mpfr" && spec.dimension > 2)
+    throw CaseError(spec.file, "--scalar",
+                    "a system of " + std::to_string(spec.dimension) +
+                        " coordinates runs in mpfr only, not in " + option +
+                        " (double, long double and float128 are built for 1 and 2 coordinates)");
+  // double is the one scalar whose range is narrower than what a case file may write (about
+  // 1e±4900; long double and float128 reach 1e±4932): "1e400" once gave only "vivv: stod".
+  if (effective == "double")
+    for (const auto& [field, text] : spec.decimals) {
+      const long double value = decimal_value_of(text).value_or(0);
+      const long double size = value < 0 ? -value : value;
+      if (size > std::numeric_limits<double>::max() ||
+          (size != 0 && size < std::numeric_limits<double>::denorm_min()))
+        throw CaseError(
+            spec.file, field,
+            "\"" + echo(text) + "\" is out of range for double (" + option +
+                "): its magnitude must lie between 4.9e-324 and 1.8e308, or be 0; long double, "
+                "float128 and mpfr reach about 1e±4900");
+    }
+  const bool leak =
+      std::find(spec.claims.begin(), spec.claims.end(), "precision-leak") != spec.claims.end();
+  if (leak && effective != "mpfr")
+    throw CaseError(
+        spec.file, "--scalar",
+        "precision-leak runs the case again at twice its digits: it needs mpfr, not " + option);
+  if (leak && digits && 2 * *digits > maximum_digits)
+    throw CaseError(spec.file, "--digits",
+                    "precision-leak runs the case again at twice its digits, and --digits " +
+                        std::to_string(*digits) + " would make that more than " +
+                        std::to_string(maximum_digits));
 }
 
 }  // namespace vivv

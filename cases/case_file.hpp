@@ -109,6 +109,9 @@ struct CaseSpec {
   std::map<std::string, ExpectedFailure> xfail;  // claim id -> how and why the case knows it fails
   bool refine = false;                       // extend the sweep until the finest orders settle
   std::vector<std::string> labels;       // e.g. "paper"
+  // Every decimal the case file gives, with its field: checked against the range of the scalar
+  // the case runs in (check_precision_options).
+  std::vector<std::pair<std::string, std::string>> decimals;
 };
 
 // Reads and validates a case file; throws CaseError (also for a path that is
@@ -118,9 +121,9 @@ CaseSpec read_case_file(const std::string& path);
 
 // What `vivv run --scalar S --digits D` would make of `spec`: the checks read_case_file makes
 // of its own "scalar" and "digits" (digits only in MPFR; 3 and 4 coordinates in MPFR only;
-// precision-leak in MPFR, at twice the digits) made again for the overrides, so that a run
-// refuses every case it cannot compute before it computes any. Throws CaseError naming the
-// case file and the option.
+// precision-leak in MPFR, at twice the digits; every decimal within the scalar's range) made
+// again for the overrides, so that a run refuses every case it cannot compute before it
+// computes any. Throws CaseError naming the case file and the option or the field.
 void check_precision_options(const CaseSpec& spec, const std::optional<std::string>& scalar,
                              std::optional<int> digits);
 

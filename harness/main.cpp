@@ -47,6 +47,12 @@ namespace vivv {
 namespace {
 
 constexpr int exit_pass = 0, exit_fail = 1, exit_bad_input = 2;
+// A --jobs worker ended by a signal (a crash, the kernel's out-of-memory killer): not the
+// input's fault, and no verdict either.
+constexpr int exit_crash = 3;
+struct WorkerCrash : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 struct BadInput : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -141,8 +147,14 @@ RunOptions parse_run_options(const std::vector<std::string>& args) {
       if (i + 1 >= args.size()) throw BadInput(arg + ": missing value");
       return args[++i];
     };
-    if (arg == "--out") options.out = value();
-    else if (arg == "--digits") options.digits = parse_integer(arg, value(), 20, maximum_digits);
+    if (arg == "--out") {
+      options.out = value();
+      // `--out --quiet` once made a directory named --quiet.
+      if (options.out.rfind("--", 0) == 0)
+        throw BadInput("--out: expected a directory, got the option '" + options.out +
+                       "' (write ./" + options.out + " for a directory of that name)");
+    } else if (arg == "--digits")
+      options.digits = parse_integer(arg, value(), 20, maximum_digits);
     else if (arg == "--scalar") {
       options.scalar = value();
       const auto& names = scalar_names();
@@ -277,7 +289,7 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
   NoteInterrupts notes;
   const pid_t parent = getpid();
   std::map<pid_t, std::size_t> running;
-  std::string failures;
+  std::string failures, crashes;
   std::size_t next = 0;
   // Waits for a worker to end, looking every 50 ms whether the run was interrupted.
   auto reap = [&]() {
@@ -292,9 +304,9 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
     running.erase(pid);
     if (WIFSIGNALED(status)) {  // no message of its own: say what ended it
       const int signal = WTERMSIG(status);
-      failures += specs[index].file + ": its worker process was ended by signal " +
-                  std::to_string(signal) + " (" + strsignal(signal) + ")" +
-                  (signal == SIGKILL ? ", perhaps by the kernel for want of memory" : "") + "\n";
+      crashes += specs[index].file + ": its worker process was ended by signal " +
+                 std::to_string(signal) + " (" + strsignal(signal) + ")" +
+                 (signal == SIGKILL ? ", perhaps by the kernel for want of memory" : "") + "\n";
       return;
     }
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
@@ -361,6 +373,9 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
     std::_Exit(128 + signal);
   }
   fs::remove_all(work);
+  if (!crashes.empty())
+    throw WorkerCrash(crashes + failures + "(no report written; exit " +
+                      std::to_string(exit_crash) + ": a crash, not a verdict and not bad input)");
   if (!failures.empty()) throw BadInput(failures + "(see the messages above)");
   return results;
 }
@@ -457,6 +472,9 @@ int command_report(const std::vector<std::string>& args, const std::string& comm
     if (args[i] == "--out") {
       if (i + 1 >= args.size()) throw BadInput("--out: missing value");
       out = args[++i];
+      if (out.rfind("--", 0) == 0)
+        throw BadInput("--out: expected a directory, got the option '" + out + "' (write ./" + out +
+                       " for a directory of that name)");
     } else if (args[i].rfind("--", 0) == 0) {
       throw BadInput("unknown option '" + args[i] + "'");
     } else {
@@ -592,9 +610,13 @@ int main(int argc, char** argv) {
     }
     std::cerr << "vivv: unknown command '" << command << "'\n";
     return usage(std::cerr, exit_bad_input);
+  } catch (const WorkerCrash& error) {
+    std::cerr << "vivv: " << error.what() << "\n";
+    return exit_crash;
   } catch (const nlohmann::json::exception& error) {  // a report.json of the wrong shape
     return bad_input(std::string("malformed input: ") + error.what());
-  } catch (const std::exception& error) {  // CaseError, BadInput, ReportError and anything else: exit 2
+  } catch (
+      const std::exception& error) {  // CaseError, BadInput, ReportError and anything else: exit 2
     return bad_input(error.what());
   }
 }

@@ -9,8 +9,9 @@ after 1.5 s (while it computes). Then the process must have ended by that signal
 report.html and junit.xml must be byte for byte the earlier ones, the directory must hold
 nothing else, its private $TMPDIR must be empty, and no worker may survive. SIGKILL with --jobs
 2 cannot be handled: the report must still be the earlier one and no worker may survive (the
-kernel ends them, PR_SET_PDEATHSIG); the private directory may stay. Exit 0 when every
-combination holds, 1 otherwise.
+kernel ends them, PR_SET_PDEATHSIG); the private directory may stay. A worker ended by SIGSEGV
+ends the run with exit 3 naming the signal, leaving the earlier report and nothing else. Exit 0
+when every combination holds, 1 otherwise.
 """
 import os
 import shutil
@@ -61,6 +62,46 @@ def check(vivv, root, quick, slow, sig, jobs):
     return problems
 
 
+def check_worker_crash(vivv, root, quick, slow):
+    """A --jobs worker ended by SIGSEGV: the run ends with exit 3 naming the case and the signal,
+    the earlier report stays, nothing is left in $TMPDIR and no worker survives."""
+    label = "a worker ended by SIGSEGV"
+    out, tmp = os.path.join(root, "out"), os.path.join(root, "tmp")
+    shutil.rmtree(root, ignore_errors=True)
+    os.makedirs(tmp)
+    env = dict(os.environ, TMPDIR=tmp)
+    subprocess.run([vivv, "run", quick, "--out", out, "--quiet"], env=env, check=True, stdout=subprocess.DEVNULL)
+    before = snapshot(out)
+    process = subprocess.Popen([vivv, "run", *slow, "--jobs", "2", "--out", out, "--quiet"], env=env,
+                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, preexec_fn=default_signals)
+    time.sleep(1.5)
+    workers = [pid for pid in vivv_processes(vivv, out) if pid != process.pid]
+    if process.poll() is not None or not workers:
+        process.kill()
+        return ["%s: no worker was running after 1.5 s" % label]
+    os.kill(workers[0], signal.SIGSEGV)
+    try:
+        _, stderr = process.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        return ["%s: still running 60 s after the crash" % label]
+    problems = []
+    message = stderr.decode(errors="replace")
+    if process.returncode != 3 or "ended by signal %d" % signal.SIGSEGV not in message:
+        problems.append("%s: exit %d, expected 3 naming signal %d; stderr: %s"
+                        % (label, process.returncode, signal.SIGSEGV, message[-300:]))
+    if snapshot(out) != before:
+        problems.append("%s: the output directory changed" % label)
+    if os.listdir(tmp):
+        problems.append("%s: left in $TMPDIR: %s" % (label, os.listdir(tmp)))
+    survivors = vivv_processes(vivv, out)
+    if survivors:
+        problems.append("%s: workers still running: %s" % (label, survivors))
+        for pid in survivors:
+            os.kill(pid, signal.SIGKILL)
+    return problems
+
+
 def default_signals():
     """In the child: the default action for the signals sent (a background shell may have left
     SIGINT and SIGQUIT ignored, and vivv keeps an ignored signal ignored), and no core file."""
@@ -95,6 +136,7 @@ def main(argv):
                     (signal.SIGQUIT, 2), (signal.SIGUSR1, 2), (signal.SIGKILL, 2)]
     for sig, jobs in combinations:
         problems += check(vivv, os.path.join(root, "%s-%d" % (sig.name, jobs)), quick, slow, sig, jobs)
+    problems += check_worker_crash(vivv, os.path.join(root, "crash"), quick, slow)
     for problem in problems:
         print(problem)
     print("interrupt: %s" % ("ok" if not problems else "%d problems" % len(problems)))
