@@ -24,15 +24,29 @@ namespace {
 
 // At most `limit` characters of `text`, and how many more there were: a hostile input's
 // 100 000-character key or value must not become a message of that size.
+// Control characters (a NUL byte once cut a message short) are shown as \xNN.
 std::string excerpt(const std::string& text, std::size_t limit) {
-  if (text.size() <= limit) return text;
-  return text.substr(0, limit) + "... (" + std::to_string(text.size() - limit) + " more characters)";
+  std::string out;
+  for (std::size_t i = 0; i < std::min(text.size(), limit); ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c < 0x20 || c == 0x7f) {
+      static const char* const digits = "0123456789abcdef";
+      out += "\\x";
+      out += digits[c >> 4];
+      out += digits[c & 15];
+    } else {
+      out += text[i];
+    }
+  }
+  if (text.size() <= limit) return out;
+  return out + "... (" + std::to_string(text.size() - limit) + " more characters)";
 }
 
 }  // namespace
 
 CaseError::CaseError(const std::string& file, const std::string& field, const std::string& message)
-    : std::runtime_error(file + ": " + (field.empty() ? "" : "field '" + excerpt(field, 120) + "': ") +
+    : std::runtime_error(excerpt(file, 500) + ": " +
+                         (field.empty() ? "" : "field '" + excerpt(field, 120) + "': ") +
                          excerpt(message, 2000)),
       file(file),
       field(field) {}

@@ -80,6 +80,15 @@ SolveReport<T> newton_solve(Vector<T, m>& x, Evaluate&& evaluate, const NewtonOp
   Matrix<T, m, m> jacobian = Matrix<T, m, m>::Zero();
   for (report.iterations = 1; report.iterations <= options.max_iterations; ++report.iterations) {
     evaluate(x, residual, jacobian);
+    // A formula evaluated outside its domain (√ or log of a negative number) gives NaN: say so,
+    // rather than "singular Jacobian", which would send the user to the wrong place.
+    if (!residual.allFinite() || !jacobian.allFinite()) {
+      report.failure = std::string(
+          "the residual or its Jacobian is not finite at the iterate (a formula evaluated "
+          "outside its domain, such as √ or log of a negative number, or an overflow)");
+      report.residual = max_norm<T, m>(residual);
+      return report;
+    }
     Eigen::FullPivLU<Matrix<T, m, m>> lu(jacobian);
     lu.setThreshold(T(16) * epsilon<T>());
     if (!lu.isInvertible()) {

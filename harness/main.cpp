@@ -19,6 +19,7 @@
 #include <array>
 #include <cerrno>
 #include <chrono>
+#include <condition_variable>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -26,8 +27,12 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
+#include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cases/case_file.hpp"
@@ -61,7 +66,7 @@ struct BadInput : std::runtime_error {
 // The message of bad input on stderr, at most 4000 characters of it (a hostile input's value
 // would otherwise be echoed whole); exit 2.
 int bad_input(const std::string& message) {
-  constexpr std::size_t limit = 4000;
+  constexpr std::size_t limit = 2000;  // a message, not a dump: the first 2 KB say what is wrong
   std::cerr << "vivv: " << message.substr(0, limit);
   if (message.size() > limit) std::cerr << "... (" << message.size() - limit << " more characters)";
   std::cerr << "\n";
@@ -192,14 +197,68 @@ extern "C" void budget_exhausted(int) {
   std::_Exit(exit_bad_input);  // nothing was written
 }
 
-// Progress on stderr: elapsed seconds and what is being computed.
+// Progress on stderr: elapsed seconds and what is being computed — and, while a phase runs
+// longer than 5 s without a line of its own (the exact TQ discretization's quadrature at 1000
+// digits, a step-size probe, L_d^E), a line every 5 s saying which phase is still running and
+// for how long, from a thread that only prints. Lives for one case (in its worker, after fork).
+class ProgressPrinter {
+ public:
+  using Clock = std::chrono::steady_clock;
+  static constexpr auto heartbeat = std::chrono::seconds(5);
+
+  ProgressPrinter() : started_(Clock::now()), last_line_(started_), phase_started_(started_) {
+    thread_ = std::thread([this] { beat(); });
+  }
+  ~ProgressPrinter() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+  }
+  ProgressPrinter(const ProgressPrinter&) = delete;
+  ProgressPrinter& operator=(const ProgressPrinter&) = delete;
+
+  void print(const std::string& message) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    phase_ = message;
+    last_line_ = phase_started_ = Clock::now();
+    write(message);
+  }
+
+ private:
+  void beat() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!stop_) {
+      wake_.wait_for(lock, std::chrono::milliseconds(250));
+      if (stop_ || phase_.empty() || Clock::now() - last_line_ < heartbeat) continue;
+      const double running = std::chrono::duration<double>(Clock::now() - phase_started_).count();
+      std::ostringstream line;
+      line << "… still: " << phase_ << " (" << std::fixed << std::setprecision(0) << running
+           << " s so far)";
+      write(line.str());
+      last_line_ = Clock::now();
+    }
+  }
+  void write(const std::string& message) const {
+    const double elapsed = std::chrono::duration<double>(Clock::now() - started_).count();
+    std::cerr << "[" << std::fixed << std::setprecision(1) << elapsed << " s] " << message << "\n";
+  }
+
+  const Clock::time_point started_;
+  Clock::time_point last_line_, phase_started_;
+  std::string phase_;
+  bool stop_ = false;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::thread thread_;
+};
+
 std::function<void(const std::string&)> progress_printer(bool enabled) {
   if (!enabled) return {};
-  auto started = std::chrono::steady_clock::now();
-  return [started](const std::string& message) {
-    double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    std::cerr << "[" << std::fixed << std::setprecision(1) << elapsed << " s] " << message << "\n";
-  };
+  auto printer = std::make_shared<ProgressPrinter>();
+  return [printer](const std::string& message) { printer->print(message); };
 }
 
 // Runs one case; solver failures and non-regular Lagrangians are bad input.

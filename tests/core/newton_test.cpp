@@ -80,5 +80,22 @@ TYPED_TEST(NewtonTest, StopsWhenTheCorrectionsStopShrinking) {
   EXPECT_NE(report.failure.find("not converging"), std::string::npos) << report.failure;
 }
 
+// A formula outside its domain — √(x − 5) at x = 1 — is named as such, not as a singular
+// Jacobian (which once sent users to look for a degenerate Lagrangian).
+TYPED_TEST(NewtonTest, ANonFiniteResidualIsNamedAsADomainError) {
+  using T = TypeParam;
+  Vector<T, 1> at;
+  at[0] = 1;
+  auto report = newton_solve<T, 1>(
+      at, [&](const Vector<T, 1>& v, Vector<T, 1>& residual, Matrix<T, 1, 1>& jacobian) {
+        using std::sqrt;
+        residual[0] = sqrt(T(v[0] - 5));
+        jacobian(0, 0) = 1 / (2 * residual[0]);
+      });
+  EXPECT_FALSE(report.converged);
+  EXPECT_NE(report.failure.find("not finite"), std::string::npos) << report.failure;
+  EXPECT_EQ(report.failure.find("singular"), std::string::npos) << report.failure;
+}
+
 }  // namespace
 }  // namespace vivv
