@@ -24,7 +24,8 @@ constexpr int digits = 77;  // 256 bits
 
 vivv::FormulaSystemDefinition definition(const std::string& text,
                                          std::vector<std::pair<std::string, std::string>> parameters) {
-  return {"formula", text, vivv::parse_formula(text), {"q"}, {"w"}, std::move(parameters), {}};
+  return {"formula", text,   vivv::parse_formula(text), {"q"}, {"w"}, std::move(parameters),
+          {},        nullptr};
 }
 
 // One DEL step of the midpoint rule from (q0, q1) = (1, 1.01), h = 1/100.

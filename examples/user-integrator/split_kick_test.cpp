@@ -44,7 +44,9 @@ TEST_F(SplitKickTest, ADoubleLiteralIsFlaggedAsAPrecisionLeak) {
   EXPECT_EQ(verdict_of(run, "precision-leak"), "xfail");
   EXPECT_EQ(vivv::write_reports(run, "report-split-kick-literal").size(), 3u);
   for (const auto& claim : run.results.front().claims)
-    if (claim.id == "precision-leak") EXPECT_NE(claim.explanation.find("bits"), std::string::npos) << claim.explanation;
+    if (claim.id == "precision-leak") {
+      EXPECT_NE(claim.explanation.find("bits"), std::string::npos) << claim.explanation;
+    }
 }
 
 // The user's own system and discrete Lagrangian: the Q×Q claims hold in MPFR, order and

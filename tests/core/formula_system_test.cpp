@@ -30,7 +30,14 @@ TYPED_TEST_SUITE(FormulaSystemTest, testing::Scalars, testing::ScalarNames);
 FormulaSystemDefinition definition(const std::string& text, std::vector<std::string> coordinates,
                                    std::vector<std::string> velocities,
                                    std::vector<std::pair<std::string, std::string>> parameters = {}) {
-  return {"formula", text, parse_formula(text), std::move(coordinates), std::move(velocities), std::move(parameters)};
+  return {"formula",
+          text,
+          parse_formula(text),
+          std::move(coordinates),
+          std::move(velocities),
+          std::move(parameters),
+          {},
+          nullptr};
 }
 
 // The catalogue's systems as the formulas a case in double, long double or float128 runs
@@ -83,9 +90,10 @@ TYPED_TEST(FormulaSystemTest, CatalogueTwinsHaveTheSameDerivatives) {
     // The twin declares the same symmetry, or none.
     using Compiled = std::decay_t<decltype(compiled)>;
     EXPECT_EQ(has_symmetry(formula), DeclaresSymmetry<Compiled>) << name;
-    if constexpr (DeclaresSymmetry<Compiled>)
+    if constexpr (DeclaresSymmetry<Compiled>) {
       EXPECT_LE(T((symmetry_generator(compiled, q) - symmetry_generator(formula, q)).cwiseAbs().maxCoeff()), tolerance)
           << name;
+    }
   });
 }
 

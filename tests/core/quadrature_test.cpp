@@ -129,7 +129,9 @@ TYPED_TEST(GaussLegendreTest, LobattoHasTheEndPointsAndIsExactForDegree2mMinus3)
     T sum = 0;
     for (int i = 0; i < m; ++i) {
       EXPECT_GT(rule.weights[i], T(0));
-      if (i > 0) EXPECT_GT(rule.nodes[i], rule.nodes[i - 1]);
+      if (i > 0) {
+        EXPECT_GT(rule.nodes[i], rule.nodes[i - 1]);
+      }
       EXPECT_LE(abs(T(rule.nodes[i] + rule.nodes[m - 1 - i] - 1)), this->working_tolerance());
       sum += rule.weights[i];
     }
