@@ -25,8 +25,9 @@ def snapshot(directory):
     return {name: open(os.path.join(directory, name), "rb").read() for name in sorted(os.listdir(directory))}
 
 
-def check(vivv, root, quick, slow, sig, jobs):
-    label = "%s, --jobs %d" % (signal.Signals(sig).name, jobs)
+def start_slow_run(vivv, root, quick, slow, jobs):
+    """A report from the quick run in ROOT/out, then the slow run into the same directory,
+    started 1.5 s ago with ROOT/tmp as its $TMPDIR: (process, out, tmp, the earlier report)."""
     out, tmp = os.path.join(root, "out"), os.path.join(root, "tmp")
     shutil.rmtree(root, ignore_errors=True)
     os.makedirs(tmp)
@@ -36,6 +37,12 @@ def check(vivv, root, quick, slow, sig, jobs):
     process = subprocess.Popen([vivv, "run", *slow, "--jobs", str(jobs), "--out", out, "--quiet"], env=env,
                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, preexec_fn=default_signals)
     time.sleep(1.5)
+    return process, out, tmp, before
+
+
+def check(vivv, root, quick, slow, sig, jobs):
+    label = "%s, --jobs %d" % (signal.Signals(sig).name, jobs)
+    process, out, tmp, before = start_slow_run(vivv, root, quick, slow, jobs)
     if process.poll() is not None:
         return ["%s: the slow run ended before it was interrupted (exit %d)" % (label, process.returncode)]
     process.send_signal(sig)
@@ -66,15 +73,7 @@ def check_worker_crash(vivv, root, quick, slow):
     """A --jobs worker ended by SIGSEGV: the run ends with exit 3 naming the case and the signal,
     the earlier report stays, nothing is left in $TMPDIR and no worker survives."""
     label = "a worker ended by SIGSEGV"
-    out, tmp = os.path.join(root, "out"), os.path.join(root, "tmp")
-    shutil.rmtree(root, ignore_errors=True)
-    os.makedirs(tmp)
-    env = dict(os.environ, TMPDIR=tmp)
-    subprocess.run([vivv, "run", quick, "--out", out, "--quiet"], env=env, check=True, stdout=subprocess.DEVNULL)
-    before = snapshot(out)
-    process = subprocess.Popen([vivv, "run", *slow, "--jobs", "2", "--out", out, "--quiet"], env=env,
-                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, preexec_fn=default_signals)
-    time.sleep(1.5)
+    process, out, tmp, before = start_slow_run(vivv, root, quick, slow, 2)
     workers = [pid for pid in vivv_processes(vivv, out) if pid != process.pid]
     if process.poll() is not None or not workers:
         process.kill()
