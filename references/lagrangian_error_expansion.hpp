@@ -24,6 +24,24 @@
 
 namespace vivv {
 
+// q(h) = Σ_k q_k h^k, its first `length` coefficients, of the Euler–Lagrange solution through
+// (q0, w0) (Taylor-mode AD of the system's L, core/taylor_curve.hpp).
+template <LagrangianSystem System>
+Point<PowerSeries<typename System::Scalar>, System::dimension> solution_series(
+    const System& system, const Vector<typename System::Scalar, System::dimension>& q0,
+    const Vector<typename System::Scalar, System::dimension>& w0, int length) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  const Tape<T> tape = euler_lagrange_tape(system);
+  std::vector<T> x0(n), v0(n);
+  for (int i = 0; i < n; ++i) x0[i] = q0[i], v0[i] = w0[i];
+  const auto solution = solution_taylor_coefficients<T, T>(tape, x0, v0, length);
+  Point<PowerSeries<T>, n> q;
+  for (int i = 0; i < n; ++i)
+    q[i] = PowerSeries<T>::from(std::vector<T>(solution[i].begin(), solution[i].begin() + length));
+  return q;
+}
+
 // E_0 … E_{terms−1} of E(h) for a discretization written as a formula (or registered C++),
 // whose only statement is its tape: the tape run in h-series, q_b = q(0), q_e = q(h) and h = h.
 // Its divisions by h leave the top coefficients unknown (KnownSeries), so the series is
@@ -40,15 +58,11 @@ std::vector<typename System::Scalar> expression_error_expansion(
   using P = PowerSeries<T>;
   using K = KnownSeries<T>;
   constexpr int n = System::dimension;
-  const Tape<T> tape = euler_lagrange_tape(system);
-  std::vector<T> x0(n), v0(n);
-  for (int i = 0; i < n; ++i) x0[i] = q0[i], v0[i] = w0[i];
   for (int length = terms + 4; length <= 4 * terms + 16; length *= 2) {
-    const auto solution = solution_taylor_coefficients<T, T>(tape, x0, v0, length);
+    const Point<P, n> q = solution_series(system, q0, w0, length);
     std::array<K, 2 * n + 1> x;
-    Point<P, n> q, w;
+    Point<P, n> w;
     for (int i = 0; i < n; ++i) {
-      q[i] = P::from(std::vector<T>(solution[i].begin(), solution[i].begin() + length));
       w[i] = q[i].derivative();
       x[i] = K(P(q0[i], length), length);
       x[n + i] = K(q[i], length);
@@ -81,14 +95,10 @@ std::vector<typename System::Scalar> lagrangian_error_expansion(
   using T = typename System::Scalar;
   using P = PowerSeries<T>;
   constexpr int n = System::dimension;
-  const Tape<T> tape = euler_lagrange_tape(system);
-  std::vector<T> x0(n), v0(n);
-  for (int i = 0; i < n; ++i) x0[i] = q0[i], v0[i] = w0[i];
-  const auto solution = solution_taylor_coefficients<T, T>(tape, x0, v0, terms);
   // q(h), q'(h), the constant q(0), and the difference quotient (q(h) − q(0))/h.
-  Point<P, n> q, w, q_begin, quotient;
+  const Point<P, n> q = solution_series(system, q0, w0, terms);
+  Point<P, n> w, q_begin, quotient;
   for (int i = 0; i < n; ++i) {
-    q[i] = P::from(std::vector<T>(solution[i].begin(), solution[i].begin() + terms));
     w[i] = q[i].derivative();
     q_begin[i] = P(q0[i], terms);
     quotient[i] = (q[i] - q_begin[i]).shifted(-1);
