@@ -39,6 +39,19 @@ struct MagneticPlane {
   }
 };
 
+// One step of `map` on (q, p): (q, p) ↦ (q', p') with w = M⁻¹p, p' = M w'.
+template <class T, class Map>
+Vector<T, 4> step_on_phase(const Map& map, const SeparableSystem<T, 2>& separable, const T& h,
+                           const Vector<T, 4>& y) {
+  State<T, 2> s;
+  s.q = y.template head<2>();
+  s.w = separable.inverse_mass * y.template tail<2>();
+  const State<T, 2> next = map->step(s, h);
+  Vector<T, 4> out;
+  out << next.q, separable.mass * next.w;
+  return out;
+}
+
 template <class T>
 class OdeintMapTest : public testing::ScalarTest<T> {
  protected:
@@ -102,15 +115,8 @@ TEST(OdeintMapJacobian, IsTheDerivativeOfTheStep) {
   x.w << T(3) / 10, -T(1) / 10;
   const auto separable = separable_form(system, x);
   const T h = T(1) / 4, delta = testing::ten_to_minus<T>(20);
-  // (q, p) ↦ (q', p') with w = M⁻¹p.
   auto on_phase = [&](const auto& map, const Vector<T, 4>& y) {
-    State<T, 2> s;
-    s.q = y.template head<2>();
-    s.w = separable.inverse_mass * y.template tail<2>();
-    const State<T, 2> next = map->step(s, h);
-    Vector<T, 4> out;
-    out << next.q, separable.mass * next.w;
-    return out;
+    return step_on_phase(map, separable, h, y);
   };
   Vector<T, 4> y;
   y << x.q, separable.mass * x.w;
@@ -138,15 +144,7 @@ TYPED_TEST(OdeintMapTest, TheJacobianCheckTellsTheStepItBelongsTo) {
   Vector<T, 4> y;
   y << this->initial.q, separable.mass * this->initial.w;
   auto check = [&](const auto& map, const Matrix<T, 4, 4>& jacobian) {
-    auto on_phase = [&](const Vector<T, 4>& x) {
-      State<T, 2> s;
-      s.q = x.template head<2>();
-      s.w = separable.inverse_mass * x.template tail<2>();
-      const State<T, 2> next = map->step(s, h);
-      Vector<T, 4> out;
-      out << next.q, separable.mass * next.w;
-      return out;
-    };
+    auto on_phase = [&](const Vector<T, 4>& x) { return step_on_phase(map, separable, h, x); };
     return compare_with_differences<T, 4>(on_phase, y, jacobian, Vector<T, 4>(y.cwiseAbs()));
   };
   for (const auto& info : odeint_steppers()) {
