@@ -189,6 +189,23 @@ S discrete_lagrangian(const System& system,
   return value;
 }
 
+// L_d(q_b, q_e) as a jet of order `Order` in its 2n arguments (q_b first, then q_e).
+template <int Order, LagrangianSystem System>
+auto discrete_lagrangian_jet(const System& system,
+                             const QxQDiscretization<typename System::Scalar>& discretization,
+                             const Vector<typename System::Scalar, System::dimension>& q_b,
+                             const Vector<typename System::Scalar, System::dimension>& q_e,
+                             const typename System::Scalar& h) {
+  constexpr int n = System::dimension;
+  using J = Jet<typename System::Scalar, 2 * n, Order>;
+  Point<J, n> jet_b, jet_e;
+  for (int i = 0; i < n; ++i) {
+    jet_b[i] = J::variable(q_b[i], i);
+    jet_e[i] = J::variable(q_e[i], n + i);
+  }
+  return J(discrete_lagrangian(system, discretization, jet_b, jet_e, h));
+}
+
 template <LagrangianSystem System>
 auto discrete_legendre(const System& system,
                        const QxQDiscretization<typename System::Scalar>& discretization,
@@ -212,13 +229,7 @@ auto discrete_legendre(const System& system,
     }
     return d;
   }
-  using J = Jet<T, 2 * n>;
-  Point<J, n> jet_b, jet_e;
-  for (int i = 0; i < n; ++i) {
-    jet_b[i] = J::variable(q_b[i], i);
-    jet_e[i] = J::variable(q_e[i], n + i);
-  }
-  J L = discrete_lagrangian(system, discretization, jet_b, jet_e, h);
+  const auto L = discrete_lagrangian_jet<2>(system, discretization, q_b, q_e, h);
   DiscreteLegendre<T, n> d;
   d.value = L.value;
   for (int i = 0; i < n; ++i) {
@@ -234,13 +245,45 @@ auto discrete_legendre(const System& system,
   return d;
 }
 
+// L_d and its two discrete Legendre transforms at (q_b, q_e), without the second derivatives:
+// a first-order jet (2n + 1 numbers instead of 1 + 2n + 4n²), the same momenta bit for bit as
+// discrete_legendre's (a jet's gradient is never computed from its Hessian).
+template <class T, int n>
+struct DiscreteMomenta {
+  T value;
+  Vector<T, n> p_begin, p_end;
+};
+
+template <LagrangianSystem System>
+auto discrete_momenta(const System& system,
+                      const QxQDiscretization<typename System::Scalar>& discretization,
+                      const Vector<typename System::Scalar, System::dimension>& q_b,
+                      const Vector<typename System::Scalar, System::dimension>& q_e,
+                      const typename System::Scalar& h) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  DiscreteMomenta<T, n> d;
+  if (discretization.rule == QxQRule::galerkin) {
+    const DiscreteLegendre<T, n> full = discrete_legendre(system, discretization, q_b, q_e, h);
+    d.value = full.value, d.p_begin = full.p_begin, d.p_end = full.p_end;
+    return d;
+  }
+  const auto L = discrete_lagrangian_jet<1>(system, discretization, q_b, q_e, h);
+  d.value = L.value;
+  for (int i = 0; i < n; ++i) {
+    d.p_begin[i] = -L.gradient[i];
+    d.p_end[i] = L.gradient[n + i];
+  }
+  return d;
+}
+
 // p_begin(q_b, q_e) = −∂L_d/∂q_b (paper: F−L_h).
 template <LagrangianSystem System>
 auto p_begin(const System& system, const QxQDiscretization<typename System::Scalar>& discretization,
              const Vector<typename System::Scalar, System::dimension>& q_b,
              const Vector<typename System::Scalar, System::dimension>& q_e,
              const typename System::Scalar& h) {
-  return discrete_legendre(system, discretization, q_b, q_e, h).p_begin;
+  return discrete_momenta(system, discretization, q_b, q_e, h).p_begin;
 }
 
 // p_end(q_b, q_e) = +∂L_d/∂q_e (paper: F+L_h).
@@ -249,7 +292,7 @@ auto p_end(const System& system, const QxQDiscretization<typename System::Scalar
            const Vector<typename System::Scalar, System::dimension>& q_b,
            const Vector<typename System::Scalar, System::dimension>& q_e,
            const typename System::Scalar& h) {
-  return discrete_legendre(system, discretization, q_b, q_e, h).p_end;
+  return discrete_momenta(system, discretization, q_b, q_e, h).p_end;
 }
 
 }  // namespace vivv

@@ -20,11 +20,16 @@ auto velocity_for_momentum(const System& system, const Vector<typename System::S
                            Vector<typename System::Scalar, System::dimension> guess) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
-  auto report = newton_solve<T, n>(guess, [&](const Vector<T, n>& w, Vector<T, n>& residual, Matrix<T, n, n>& jacobian) {
-    const auto d = lagrangian_derivatives(system, q, w);
-    residual = d.dL_dw - p;
-    jacobian = d.d2L_dw2;
-  });
+  auto report = newton_solve<T, n>(
+      guess,
+      [&](const Vector<T, n>& w, Vector<T, n>& residual, Matrix<T, n, n>& jacobian) {
+        const auto L = lagrangian_in_velocity<2>(system, q, w);
+        for (int i = 0; i < n; ++i) {
+          residual[i] = L.gradient[i] - p[i];
+          for (int j = 0; j < n; ++j) jacobian(i, j) = L.second(i, j);
+        }
+      },
+      options_along_a_run());
   require_converged(report, "inverse Legendre transform w(q, p)");
   return guess;
 }

@@ -58,17 +58,35 @@ struct Jet {
     hessian.fill(T(0));
   }
 
-  // φ(u) from φ(u0), φ'(u0), φ''(u0): the chain rule above.
-  Jet chain(const T& f0, const T& f1, const T& f2) const {
-    Jet r(f0);
-    for (int i = 0; i < N; ++i) r.gradient[i] = f1 * gradient[i];
+  // φ(u) from φ(u0), φ'(u0), φ''(u0): the chain rule above, in place (`apply_chain`) or on a
+  // copy. The arithmetic works in place through one scratch number and fills the symmetric
+  // Hessian's upper triangle, mirroring it: for MPFR every temporary is an allocation, and these
+  // loops are most of a DEL step's cost. (The elementary functions below take their argument by
+  // value for the same reason: a caller that moves a jet in gets it back transformed, with no
+  // allocation.)
+  Jet& apply_chain(const T& f0, const T& f1, const T& f2) {
     if constexpr (Order == 2) {
+      T scratch;
       for (int i = 0; i < N; ++i)
-        for (int j = 0; j < N; ++j)
-          r.hessian[i * N + j] = f1 * hessian[i * N + j] + f2 * gradient[i] * gradient[j];
+        for (int j = i; j < N; ++j) {
+          T& h = hessian[i * N + j];
+          h *= f1;
+          scratch = gradient[i];
+          scratch *= gradient[j];
+          scratch *= f2;
+          h += scratch;
+          if (j != i) hessian[j * N + i] = h;
+        }
     } else {
       (void)f2;
     }
+    for (auto& g : gradient) g *= f1;
+    value = f0;
+    return *this;
+  }
+  Jet chain(const T& f0, const T& f1, const T& f2) const {
+    Jet r = *this;
+    r.apply_chain(f0, f1, f2);
     return r;
   }
 
@@ -84,16 +102,38 @@ struct Jet {
     for (int i = 0; i < hessian_size; ++i) hessian[i] -= b.hessian[i];
     return *this;
   }
-  // (ab)'' = a b'' + b a'' + a' b'ᵀ + b' a'ᵀ
+  // (ab)'' = a b'' + b a'' + a' b'ᵀ + b' a'ᵀ, in place: the Hessian first (it reads the old
+  // value and gradient), then the gradient, then the value.
   Jet& operator*=(const Jet& b) {
-    Jet r(value * b.value);
-    for (int i = 0; i < N; ++i) r.gradient[i] = value * b.gradient[i] + b.value * gradient[i];
+    if (&b == this) {
+      const Jet copy = b;
+      return *this *= copy;
+    }
+    T scratch, term;
     if constexpr (Order == 2)
       for (int i = 0; i < N; ++i)
-        for (int j = 0; j < N; ++j)
-          r.hessian[i * N + j] = value * b.hessian[i * N + j] + b.value * hessian[i * N + j] +
-                                 gradient[i] * b.gradient[j] + b.gradient[i] * gradient[j];
-    return *this = r;
+        for (int j = i; j < N; ++j) {
+          T& h = hessian[i * N + j];
+          h *= b.value;
+          scratch = value;
+          scratch *= b.hessian[i * N + j];
+          h += scratch;
+          scratch = gradient[i];
+          scratch *= b.gradient[j];
+          term = b.gradient[i];
+          term *= gradient[j];
+          scratch += term;
+          h += scratch;
+          if (j != i) hessian[j * N + i] = h;
+        }
+    for (int i = 0; i < N; ++i) {
+      gradient[i] *= b.value;
+      scratch = value;
+      scratch *= b.gradient[i];
+      gradient[i] += scratch;
+    }
+    value *= b.value;
+    return *this;
   }
   // a / b = a · (1/b), with (1/u)' = −1/u², (1/u)'' = 2/u³.
   Jet& operator/=(const Jet& b) {
@@ -167,49 +207,57 @@ VIVV_JET_CONSTANT Jet<T, N, O> operator/(const U& c, const Jet<T, N, O>& a) {
 
 // Elementary functions, each by its first and second derivative.
 template <class T, int N, int O>
-Jet<T, N, O> sin(const Jet<T, N, O>& u) {
+Jet<T, N, O> sin(Jet<T, N, O> u) {
   using std::cos, std::sin;
   T s = sin(u.value), c = cos(u.value);
-  return u.chain(s, c, -s);
+  u.apply_chain(s, c, -s);
+  return u;
 }
 template <class T, int N, int O>
-Jet<T, N, O> cos(const Jet<T, N, O>& u) {
+Jet<T, N, O> cos(Jet<T, N, O> u) {
   using std::cos, std::sin;
   T s = sin(u.value), c = cos(u.value);
-  return u.chain(c, -s, -c);
+  u.apply_chain(c, -s, -c);
+  return u;
 }
 template <class T, int N, int O>
-Jet<T, N, O> exp(const Jet<T, N, O>& u) {
+Jet<T, N, O> exp(Jet<T, N, O> u) {
   using std::exp;
   T e = exp(u.value);
-  return u.chain(e, e, e);
+  u.apply_chain(e, e, e);
+  return u;
 }
 template <class T, int N, int O>
-Jet<T, N, O> log(const Jet<T, N, O>& u) {
+Jet<T, N, O> log(Jet<T, N, O> u) {
   using std::log;
   T inverse = 1 / u.value;
-  return u.chain(log(u.value), inverse, -inverse * inverse);
+  u.apply_chain(log(u.value), inverse, -inverse * inverse);
+  return u;
 }
 template <class T, int N, int O>
-Jet<T, N, O> sqrt(const Jet<T, N, O>& u) {
+Jet<T, N, O> sqrt(Jet<T, N, O> u) {
   using std::sqrt;
   T s = sqrt(u.value);
-  return u.chain(s, 1 / (2 * s), -1 / (4 * s * s * s));
+  u.apply_chain(s, 1 / (2 * s), -1 / (4 * s * s * s));
+  return u;
 }
 template <class T, int N, int O>
-Jet<T, N, O> atan(const Jet<T, N, O>& u) {
+Jet<T, N, O> atan(Jet<T, N, O> u) {
   using std::atan;
   T inverse = 1 / (1 + u.value * u.value);
-  return u.chain(atan(u.value), inverse, -2 * u.value * inverse * inverse);
+  u.apply_chain(atan(u.value), inverse, -2 * u.value * inverse * inverse);
+  return u;
 }
 // u^p for a constant exponent p (in T, or in the scalar under nested jets).
-template <class T, int N, int O, class P, std::enable_if_t<!is_jet<P>::value || std::is_same_v<P, T>, int> = 0>
-Jet<T, N, O> pow(const Jet<T, N, O>& u, const P& p) {
+template <class T, int N, int O, class P,
+          std::enable_if_t<!is_jet<P>::value || std::is_same_v<P, T>, int> = 0>
+Jet<T, N, O> pow(Jet<T, N, O> u, const P& p) {
   using std::pow;
   T f0 = pow(u.value, p);
   T f1 = p * pow(u.value, P(p - 1));
   T f2 = p * (p - 1) * pow(u.value, P(p - 2));
-  return u.chain(f0, f1, f2);
+  u.apply_chain(f0, f1, f2);
+  return u;
 }
 
 }  // namespace vivv

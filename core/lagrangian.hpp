@@ -88,19 +88,42 @@ auto lagrangian_derivatives(const System& system,
   return d;
 }
 
+// L(q, w) as a jet in w alone, q held constant: ∂L/∂w (Order 1), and ∂²L/∂w² too (Order 2).
+// Where nothing else is used — the momentum, the energy, the inverse Legendre transform — this
+// carries n + 1 (or 1 + n + n²) numbers instead of lagrangian_derivatives' 1 + 2n + 4n², and
+// gives the same numbers bit for bit: a jet's w-entries are never computed from its q-entries.
+template <int Order, LagrangianSystem System>
+auto lagrangian_in_velocity(const System& system,
+                            const Vector<typename System::Scalar, System::dimension>& q,
+                            const Vector<typename System::Scalar, System::dimension>& w) {
+  using J = Jet<typename System::Scalar, System::dimension, Order>;
+  Point<J, System::dimension> jet_q, jet_w;
+  for (int i = 0; i < System::dimension; ++i) {
+    jet_q[i] = J(q[i]);
+    jet_w[i] = J::variable(w[i], i);
+  }
+  return J(system.lagrangian(jet_q, jet_w));
+}
+
 // Momentum p = FL(q, w) = dL/dw.
 template <LagrangianSystem System>
 auto momentum(const System& system, const Vector<typename System::Scalar, System::dimension>& q,
               const Vector<typename System::Scalar, System::dimension>& w) {
-  return lagrangian_derivatives(system, q, w).dL_dw;
+  const auto L = lagrangian_in_velocity<1>(system, q, w);
+  Vector<typename System::Scalar, System::dimension> p;
+  for (int i = 0; i < System::dimension; ++i) p[i] = L.gradient[i];
+  return p;
 }
 
 // Energy E = dL/dw · w − L.
 template <LagrangianSystem System>
 auto energy(const System& system, const Vector<typename System::Scalar, System::dimension>& q,
             const Vector<typename System::Scalar, System::dimension>& w) {
-  auto d = lagrangian_derivatives(system, q, w);
-  return typename System::Scalar(d.dL_dw.dot(w) - d.value);
+  using T = typename System::Scalar;
+  const auto L = lagrangian_in_velocity<1>(system, q, w);
+  T energy = -L.value;
+  for (int i = 0; i < System::dimension; ++i) energy += L.gradient[i] * w[i];
+  return energy;
 }
 
 // Euler–Lagrange acceleration q'' = M⁻¹ (dL/dq − (d²L/dw dq) w), docs/theory.md.

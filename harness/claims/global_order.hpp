@@ -108,8 +108,7 @@ SweepRun<System> run_sweep(const CaseContext<System>& context, const DelScheme<t
     auto trajectory = del_run(context, scheme, h, N);
     run.q_final.push_back(trajectory->q[N]);
     run.p_final.push_back(
-        discrete_legendre(context.system, scheme.future, trajectory->q[N - 1], trajectory->q[N], h)
-            .p_end);
+        p_end(context.system, scheme.future, trajectory->q[N - 1], trajectory->q[N], h));
     if (keep_trajectories) run.trajectories.push_back(std::move(trajectory));
   }
   return run;
@@ -135,7 +134,7 @@ template <LagrangianSystem System>
 Vector<typename System::Scalar, System::dimension> momentum_at_step(
     const CaseContext<System>& context, const std::vector<Vector<typename System::Scalar, System::dimension>>& q,
     int k, const typename System::Scalar& h) {
-  return discrete_legendre(context.system, context.scheme.future, q[k], q[k + 1], h).p_begin;
+  return p_begin(context.system, context.scheme.future, q[k], q[k + 1], h);
 }
 
 // Steps too large for the motion are not evidence against an order: a failing series whose

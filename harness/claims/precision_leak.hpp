@@ -260,7 +260,7 @@ struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {
       q1 = step.next.q, p1 = momentum(system, step.next.q, step.next.w);
     } else {
       q1 = start_from_momentum(system, context.scheme.future, x0.q, x0.w, h);
-      p1 = discrete_legendre(system, context.scheme.future, x0.q, q1, h).p_end;
+      p1 = p_end(system, context.scheme.future, x0.q, q1, h);
     }
     const Vector<T, n> p0 = momentum(system, x0.q, x0.w), p_exact = momentum(system, exact.q, exact.w);
     const T error = max(max_norm<T, n>(q1 - exact.q), max_norm<T, n>(p1 - p_exact));

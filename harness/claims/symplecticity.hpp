@@ -109,12 +109,11 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
           require_converged(
               report, "symplecticity's check of its Jacobian: a DEL step from a perturbed (q, p)");
           Vector<T, 2 * n> out;
-          out << to, discrete_legendre(context.system, context.scheme.past, from, to, h).p_end;
+          out << to, p_end(context.system, context.scheme.past, from, to, h);
           return out;
         };
         Vector<T, 2 * n> y;
-        y << q[worst],
-            discrete_legendre(context.system, context.scheme.future, q[worst], q_next, h).p_begin;
+        y << q[worst], p_begin(context.system, context.scheme.future, q[worst], q_next, h);
         jacobian_checks.push_back(check_jacobian(h, worst, step, y, jacobians[worst], scale));
       });
       claim.evidence["jacobian"] =
