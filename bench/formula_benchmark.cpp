@@ -9,8 +9,10 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 
+#include "bench/median_reporter.hpp"
 #include "cases/formula_parser.hpp"
 #include "cases/systems.hpp"
 #include "core/del_evolution.hpp"
@@ -56,21 +58,6 @@ void taylor_steps(benchmark::State& state, const System& system) {
   state.SetItemsProcessed(state.iterations() * steps);  // items/s: Taylor steps per second
 }
 
-// Keeps each benchmark's time per iteration (DEL) or per Taylor step, for the ratios.
-class RatioReporter : public benchmark::ConsoleReporter {
- public:
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const auto& run : runs) {
-      double seconds = run.GetAdjustedRealTime();
-      auto steps = run.counters.find("steps");
-      if (steps != run.counters.end() && steps->second.value > 0) seconds /= steps->second.value;
-      per_unit[run.benchmark_name()] = seconds;
-    }
-    ConsoleReporter::ReportRuns(runs);
-  }
-  std::map<std::string, double> per_unit;
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -81,24 +68,56 @@ int main(int argc, char** argv) {
   const auto paper_twin = vivv::make_formula_system<mpfr_real, 1>(
       definition("(g0 + g2*q^2) * w^2 / 2 - (k*(1 - cos(q)) + m*q^2/2)",
                  {{"g0", "1"}, {"g2", "0.5"}, {"k", "1"}, {"m", "0"}}));
-  benchmark::RegisterBenchmark("del_step/pendulum/compiled", [&](auto& s) { del_step(s, pendulum); });
-  benchmark::RegisterBenchmark("del_step/pendulum/formula", [&](auto& s) { del_step(s, pendulum_twin); });
-  benchmark::RegisterBenchmark("del_step/paper_example/compiled", [&](auto& s) { del_step(s, paper); });
-  benchmark::RegisterBenchmark("del_step/paper_example/formula", [&](auto& s) { del_step(s, paper_twin); });
-  benchmark::RegisterBenchmark("taylor_step/pendulum/compiled", [&](auto& s) { taylor_steps(s, pendulum); });
-  benchmark::RegisterBenchmark("taylor_step/pendulum/formula", [&](auto& s) { taylor_steps(s, pendulum_twin); });
-  benchmark::RegisterBenchmark("taylor_step/paper_example/compiled", [&](auto& s) { taylor_steps(s, paper); });
-  benchmark::RegisterBenchmark("taylor_step/paper_example/formula", [&](auto& s) { taylor_steps(s, paper_twin); });
+  benchmark::RegisterBenchmark("del_step/pendulum/compiled", [&](auto& s) {
+    del_step(s, pendulum);
+  })->Repetitions(vivv::benchmark_repetitions);
+  benchmark::RegisterBenchmark("del_step/pendulum/formula", [&](auto& s) {
+    del_step(s, pendulum_twin);
+  })->Repetitions(vivv::benchmark_repetitions);
+  benchmark::RegisterBenchmark("del_step/paper_example/compiled", [&](auto& s) {
+    del_step(s, paper);
+  })->Repetitions(vivv::benchmark_repetitions);
+  benchmark::RegisterBenchmark("del_step/paper_example/formula", [&](auto& s) {
+    del_step(s, paper_twin);
+  })->Repetitions(vivv::benchmark_repetitions);
+  benchmark::RegisterBenchmark("taylor_step/pendulum/compiled", [&](auto& s) {
+    taylor_steps(s, pendulum);
+  })->Repetitions(vivv::benchmark_repetitions);
+  benchmark::RegisterBenchmark("taylor_step/pendulum/formula", [&](auto& s) {
+    taylor_steps(s, pendulum_twin);
+  })->Repetitions(vivv::benchmark_repetitions);
+  benchmark::RegisterBenchmark("taylor_step/paper_example/compiled", [&](auto& s) {
+    taylor_steps(s, paper);
+  })->Repetitions(vivv::benchmark_repetitions);
+  benchmark::RegisterBenchmark("taylor_step/paper_example/formula", [&](auto& s) {
+    taylor_steps(s, paper_twin);
+  })->Repetitions(vivv::benchmark_repetitions);
   benchmark::Initialize(&argc, argv);
-  RatioReporter reporter;
+  vivv::MedianReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
-  std::printf("\nformula / compiled, MPFR %d bits (target <= 2):\n", vivv::precision_bits<mpfr_real>());
-  for (const char* what : {"del_step", "taylor_step"})
+  // Targets: a formula DEL step within 1.2x its compiled twin (issue 27), a Taylor step within 2x.
+  const std::map<std::string, double> targets = {{"del_step", 1.2}, {"taylor_step", 2.0}};
+  nlohmann::json rows = nlohmann::json::array();
+  std::printf("\nformula / compiled, MPFR %d bits, medians of %d repetitions:\n",
+              vivv::precision_bits<mpfr_real>(), vivv::benchmark_repetitions);
+  for (const auto& [what, target] : targets)
     for (const char* system : {"pendulum", "paper_example"}) {
-      const std::string base = std::string(what) + "/" + system + "/";
-      auto compiled = reporter.per_unit.find(base + "compiled"), formula = reporter.per_unit.find(base + "formula");
-      if (compiled == reporter.per_unit.end() || formula == reporter.per_unit.end()) continue;
-      std::printf("  %-28s %.2f\n", (std::string(what) + " " + system).c_str(), formula->second / compiled->second);
+      const std::string base = what + "/" + system + "/";
+      if (!reporter.has(base + "compiled") || !reporter.has(base + "formula")) continue;
+      const double ratio = reporter.median(base + "formula") / reporter.median(base + "compiled");
+      std::printf("  %-28s %.2f (target <= %.1f)\n", (what + " " + system).c_str(), ratio, target);
+      rows.push_back({{"step", what},
+                      {"system", system},
+                      {"ratio", ratio},
+                      {"target", target},
+                      {"within_target", ratio <= target}});
     }
+  // The last line: one JSON object, comparable across machines (every figure a ratio).
+  std::printf("%s\n", nlohmann::json{{"benchmark", "formula / compiled"},
+                                     {"bits", vivv::precision_bits<mpfr_real>()},
+                                     {"repetitions", vivv::benchmark_repetitions},
+                                     {"rows", rows}}
+                          .dump()
+                          .c_str());
   return 0;
 }

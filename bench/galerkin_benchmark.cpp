@@ -11,9 +11,11 @@
 
 #include <cstdio>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "bench/counted_system.hpp"
+#include "bench/median_reporter.hpp"
 #include "cases/systems.hpp"
 #include "core/del_evolution.hpp"
 #include "core/galerkin.hpp"
@@ -52,40 +54,53 @@ void lagrangian_hessian(benchmark::State& state, const System& system) {
   for (auto _ : state) benchmark::DoNotOptimize(vivv::lagrangian_hessian(system, x, v));
 }
 
-class RatioReporter : public benchmark::ConsoleReporter {
- public:
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const auto& run : runs) {
-      seconds[run.benchmark_name()] = run.GetAdjustedRealTime();
-      auto count = run.counters.find("evaluations");
-      if (count != run.counters.end()) evaluations[run.benchmark_name()] = count->second.value;
-    }
-    ConsoleReporter::ReportRuns(runs);
-  }
-  std::map<std::string, double> seconds, evaluations;
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
   vivv::PrecisionGuard guard(digits);
   const Counted<vivv::Pendulum<mpfr_real>> pendulum;
   const Counted<vivv::PaperExample<mpfr_real>> paper;
-  benchmark::RegisterBenchmark("galerkin_del_step/pendulum", [&](auto& s) { del_step(s, pendulum); });
-  benchmark::RegisterBenchmark("lagrangian_hessian/pendulum", [&](auto& s) { lagrangian_hessian(s, pendulum); });
-  benchmark::RegisterBenchmark("galerkin_del_step/paper_example", [&](auto& s) { del_step(s, paper); });
-  benchmark::RegisterBenchmark("lagrangian_hessian/paper_example", [&](auto& s) { lagrangian_hessian(s, paper); });
+  benchmark::RegisterBenchmark("galerkin_del_step/pendulum", [&](auto& s) {
+    del_step(s, pendulum);
+  })->Repetitions(vivv::benchmark_repetitions);
+  benchmark::RegisterBenchmark("lagrangian_hessian/pendulum", [&](auto& s) {
+    lagrangian_hessian(s, pendulum);
+  })->Repetitions(vivv::benchmark_repetitions);
+  benchmark::RegisterBenchmark("galerkin_del_step/paper_example", [&](auto& s) {
+    del_step(s, paper);
+  })->Repetitions(vivv::benchmark_repetitions);
+  benchmark::RegisterBenchmark("lagrangian_hessian/paper_example", [&](auto& s) {
+    lagrangian_hessian(s, paper);
+  })->Repetitions(vivv::benchmark_repetitions);
   benchmark::Initialize(&argc, argv);
-  RatioReporter reporter;
+  vivv::MedianReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
-  std::printf("\nGalerkin degree 4, 4 Gauss nodes, MPFR %d bits: DEL step / (L evaluations x one evaluation)\n",
-              vivv::precision_bits<mpfr_real>());
+  constexpr double target = 3;  // issue 27: a Galerkin DEL step within 3x its L evaluations
+  nlohmann::json rows = nlohmann::json::array();
+  std::printf(
+      "\nGalerkin degree 4, 4 Gauss nodes, MPFR %d bits: DEL step / (L evaluations x one "
+      "evaluation), "
+      "medians of %d repetitions\n",
+      vivv::precision_bits<mpfr_real>(), vivv::benchmark_repetitions);
   for (const char* system : {"pendulum", "paper_example"}) {
     const std::string step = std::string("galerkin_del_step/") + system, one = std::string("lagrangian_hessian/") + system;
-    if (!reporter.seconds.count(step) || !reporter.seconds.count(one)) continue;
-    const double count = reporter.evaluations[step];
-    std::printf("  %-14s %.0f evaluations per step, ratio %.2f\n", system, count,
-                reporter.seconds[step] / (count * reporter.seconds[one]));
+    if (!reporter.has(step) || !reporter.has(one)) continue;
+    const double count = reporter.counter(step, "evaluations");
+    const double ratio = reporter.median(step) / (count * reporter.median(one));
+    std::printf("  %-14s %.0f evaluations per step, ratio %.2f (target <= %.0f)\n", system, count,
+                ratio, target);
+    rows.push_back({{"system", system},
+                    {"evaluations", count},
+                    {"ratio", ratio},
+                    {"target", target},
+                    {"within_target", ratio <= target}});
   }
+  // The last line: one JSON object, comparable across machines (every figure a ratio).
+  std::printf("%s\n", nlohmann::json{{"benchmark", "galerkin DEL step / L evaluations"},
+                                     {"bits", vivv::precision_bits<mpfr_real>()},
+                                     {"repetitions", vivv::benchmark_repetitions},
+                                     {"rows", rows}}
+                          .dump()
+                          .c_str());
   return 0;
 }

@@ -41,6 +41,7 @@
 #include "harness/bench_del.hpp"
 #include "harness/bench_reference.hpp"
 #include "harness/claims.hpp"
+#include "harness/rejudge.hpp"
 #include "harness/run_case.hpp"
 #include "harness/version.hpp"
 #include "reports/report.hpp"
@@ -538,6 +539,7 @@ int command_report(const std::vector<std::string>& args, const std::string& comm
       throw BadInput("unknown option '" + args[i] + "'");
     } else {
       inputs.emplace_back(args[i], read_report(args[i]));
+      check_series_follow_from_errors(inputs.back().second, args[i]);
     }
   }
   if (inputs.empty()) throw BadInput("vivv report: expected at least one report.json");
