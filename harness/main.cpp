@@ -538,14 +538,28 @@ int command_report(const std::vector<std::string>& args, const std::string& comm
     } else if (args[i].rfind("--", 0) == 0) {
       throw BadInput("unknown option '" + args[i] + "'");
     } else {
-      inputs.emplace_back(args[i], read_report(args[i]));
-      check_series_follow_from_errors(inputs.back().second, args[i]);
+      try {
+        inputs.emplace_back(args[i], read_report(args[i]));
+        check_series_follow_from_errors(inputs.back().second, args[i]);
+      } catch (const nlohmann::json::exception& error) {  // a shape the schema does not rule out
+        throw BadInput(args[i] + ": a field is missing or of an unexpected type for vivv report (" +
+                       error.what() + "): a damaged or edited report");
+      }
     }
   }
   if (inputs.empty()) throw BadInput("vivv report: expected at least one report.json");
   if (out.empty()) throw BadInput("vivv report: expected --out DIR");
   check_output_directory(out);
-  return write_reports(out, merge_reports(inputs, {command_line, library_versions()}));
+  nlohmann::json merged;
+  try {
+    merged = merge_reports(inputs, {command_line, library_versions()});
+  } catch (const nlohmann::json::exception& error) {
+    std::string names;
+    for (const auto& input : inputs) names += (names.empty() ? "" : ", ") + input.first;
+    throw BadInput("merging " + names + ": a field is missing or of an unexpected type (" +
+                   error.what() + "): a damaged or edited report");
+  }
+  return write_reports(out, merged);
 }
 
 int command_list() {
