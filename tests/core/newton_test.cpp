@@ -97,5 +97,53 @@ TYPED_TEST(NewtonTest, ANonFiniteResidualIsNamedAsADomainError) {
   EXPECT_EQ(report.failure.find("singular"), std::string::npos) << report.failure;
 }
 
+// x² = a from x0: quadratic convergence to √a when a > 0, only linear (each correction half the
+// one before) to the double root when a = 0.
+template <class T>
+SolveReport<T> solve_square(T& x, const T& a, int& evaluations, const NewtonOptions& options) {
+  Vector<T, 1> at;
+  at[0] = x;
+  auto report = newton_solve<T, 1>(
+      at,
+      [&](const Vector<T, 1>& v, Vector<T, 1>& residual, Matrix<T, 1, 1>& jacobian) {
+        ++evaluations;
+        residual[0] = v[0] * v[0] - a;
+        jacobian(0, 0) = 2 * v[0];
+      },
+      options);
+  x = at[0];
+  return report;
+}
+
+// The options for solves along a run: the predicted stop saves an iteration of a quadratically
+// converging solve, the skipped evaluation at the solution one more, and the root is as accurate.
+TYPED_TEST(NewtonTest, ThePredictedStopSavesEvaluationsOfAQuadraticSolve) {
+  using T = TypeParam;
+  using std::abs;
+  using std::sqrt;
+  T plain = T(3) / 2, predicted = plain;
+  int plain_evaluations = 0, predicted_evaluations = 0;
+  ASSERT_TRUE(solve_square(plain, T(2), plain_evaluations, {}).converged);
+  ASSERT_TRUE(
+      solve_square(predicted, T(2), predicted_evaluations, options_along_a_run()).converged);
+  EXPECT_LE(predicted_evaluations, plain_evaluations - 2);
+  EXPECT_LE(abs(T(predicted - sqrt(T(2)))), this->working_tolerance());
+}
+
+// The negative control: a solve converging only linearly (θ = 1/2) is not stopped earlier than
+// the plain rule stops it; only the evaluation at the solution is saved.
+TYPED_TEST(NewtonTest, ThePredictedStopWaitsForALinearlyConvergingSolve) {
+  using T = TypeParam;
+  T plain = 1, predicted = 1;
+  int plain_evaluations = 0, predicted_evaluations = 0;
+  // Halving to the rounding level takes about 150 iterations at 60 digits.
+  NewtonOptions plain_options, predicted_options = options_along_a_run();
+  plain_options.max_iterations = predicted_options.max_iterations = 400;
+  ASSERT_TRUE(solve_square(plain, T(0), plain_evaluations, plain_options).converged);
+  ASSERT_TRUE(solve_square(predicted, T(0), predicted_evaluations, predicted_options).converged);
+  EXPECT_EQ(predicted_evaluations, plain_evaluations - 1);
+  EXPECT_EQ(predicted, plain);
+}
+
 }  // namespace
 }  // namespace vivv
