@@ -75,8 +75,15 @@ auto del_trajectory(const System& system, const DelScheme<typename System::Scala
   trajectory.q.reserve(steps + 1);
   for (int k = 1; k < steps; ++k) {
     auto [q_next, report] = del_step(system, scheme, trajectory.q[k - 1], trajectory.q[k], h);
-    require_converged(report, "DEL step " + std::to_string(k) + " of " + std::to_string(steps) +
-                                  " with h = " + to_decimal<T>(h, 17));
+    if (!report.converged) {
+      // Where the run was when the step failed: a step that fails partway is read against the
+      // state it started from, not the initial one.
+      std::string at;
+      for (int i = 0; i < n; ++i) at += (i ? ", " : "") + to_decimal<T>(trajectory.q[k][i], 8);
+      require_converged(report, "DEL step " + std::to_string(k) + " of " + std::to_string(steps) +
+                                    " with h = " + to_decimal<T>(h, 17) + " (from t = " +
+                                    to_decimal<T>(T(k * h), 8) + ", q = (" + at + "))");
+    }
     trajectory.max_iterations = std::max(trajectory.max_iterations, report.iterations);
     trajectory.q.push_back(q_next);
     if (after_step) after_step(k + 1, steps);

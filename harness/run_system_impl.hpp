@@ -68,7 +68,12 @@ std::string first_step_probe(const CaseContext<System>& context, int beyond = 10
   }
   const std::string from = "the first step from the initial state ";
   if (failed.empty())
-    return from + "converges at every h of the sweep: the solve failed further along, where the state has moved";
+    return from +
+           "converges at every h of the sweep: the solve failed further along, at the t and q "
+           "named " +
+           "above, where the state has moved; to go on, take step counts large enough for the "
+           "motion there " +
+           "(a smaller h), or a T that ends before it";
   if (!converged.empty()) {
     const int largest = converged.front();
     return from + "fails for N = " + listed(failed) + " and converges for N = " + listed(converged) +
