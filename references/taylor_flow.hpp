@@ -147,10 +147,18 @@ T TaylorIntegrator<T>::jorba_zou_step(const T& at) const {
       const T& y0 = part == 0 ? expansion_.position(i, 0) : expansion_.velocity(i, 0);
       const T& yp = part == 0 ? expansion_.position(i, p) : expansion_.velocity(i, p);
       const T& yq = part == 0 ? expansion_.position(i, p - 1) : expansion_.velocity(i, p - 1);
-      if (!isfinite(yp) || !isfinite(yq) || !isfinite(y0))
+      if (!isfinite(yp) || !isfinite(yq) || !isfinite(y0)) {
+        std::string q, w;
+        for (int k = 0; k < m; ++k) {
+          q += (k ? ", " : "") + to_decimal<T>(expansion_.position(k, 0), 8);
+          w += (k ? ", " : "") + to_decimal<T>(expansion_.velocity(k, 0), 8);
+        }
         throw std::runtime_error(
-            "TaylorIntegrator: non-finite Taylor coefficients (the state left the Lagrangian's "
-            "domain or its mass matrix became singular)");
+            "the Taylor-series flow's coefficients are not finite at t = " + to_decimal<T>(at, 8) +
+            " from q = (" + q + "), w = (" + w +
+            "): the state left the Lagrangian's domain (a formula's √ or log of a negative number, "
+            "a division by zero) or its mass matrix became singular there");
+      }
       if (abs_less(*state_norm, y0)) state_norm = &y0;
       if (abs_less(*norm_last, yp)) norm_last = &yp;
       if (abs_less(*norm_previous, yq)) norm_previous = &yq;
