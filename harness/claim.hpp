@@ -140,6 +140,7 @@ struct PerStepCheck {
                       const std::string& held, const std::string& failed) const {
     claim.evidence["per_step"] = rows;
     Series series = sweep_series(context, label, values, std::nullopt);
+    series.rule = "per-step-tolerance";
     series.holds = holds && scaling_failure.empty();
     series.explanation = *series.holds ? held : !holds ? failed : scaling_failure;
     if (!holds && !scaling_failure.empty()) series.explanation += "; and " + scaling_failure;

@@ -49,6 +49,22 @@ void check_series_follow_from_errors(const nlohmann::json& report, const std::st
       const nlohmann::json series_list = claims.value("series", nlohmann::json::array());
       for (std::size_t j = 0; j < series_list.size(); ++j) {
         const nlohmann::json& s = series_list[j];
+        // The rule that decided the series (absent in reports written before vivv recorded it:
+        // the order rule's explanations begin with "observed order").
+        const std::string rule =
+            s.contains("rule") ? s["rule"].get<std::string>()
+            : s.value("explanation", std::string()).rfind("observed order", 0) == 0 ? "order"
+                                                                                    : "unrecorded";
+        if (rule == "none" && !s.value("holds", nlohmann::json()).is_null())
+          throw ReportError(where(path, i, k, j, c) + ": rule \"none\" (not judged) with holds " +
+                            s["holds"].dump() +
+                            ": the report was edited or damaged after vivv wrote it");
+        if (rule == "order" && (!s.contains("observed_order") || !s.contains("fit_points") ||
+                                !s.contains("predicted_order") || s["predicted_order"].is_null()))
+          throw ReportError(
+              where(path, i, k, j, c) +
+              ": rule \"order\" without its fit (observed_order, fit_points and predicted_order): "
+              "the report was edited or damaged after vivv wrote it");
         if (!s.contains("observed_order") || !s.contains("fit_points") ||
             !s.contains("predicted_order") || s["predicted_order"].is_null())
           continue;
@@ -70,9 +86,8 @@ void check_series_follow_from_errors(const nlohmann::json& report, const std::st
         const auto above = std::count_if(error.begin(), error.end(), [&](const T& e) { return e > floor; });
         // Only the verdicts of the order rule itself: a claim may judge a fitted series by another
         // rule (lagrangian-order's signed leading coefficient against its own error bar).
-        const std::string explanation = s.value("explanation", std::string());
         if (s.value("holds", nlohmann::json()) != nlohmann::json(true) || above < 2 ||
-            explanation.rfind("observed order", 0) != 0)
+            rule != "order")
           continue;
         const OrderVerdict verdict =
             judge_order(fit, s["predicted_order"].get<double>(), s.value("exact_order", false), tolerance);

@@ -62,6 +62,7 @@ Series make_series(const std::string& label, const std::vector<T>& h, const std:
   }
   if (above >= 2) {
     OrderVerdict verdict = judge_order(*series.fit, *predicted, exact, tolerance);
+    series.rule = "order";
     series.holds = verdict.holds;
     series.inconclusive = verdict.inconclusive;
     series.to_decide = verdict.to_decide;
@@ -93,6 +94,7 @@ Series make_series(const std::string& label, const std::vector<T>& h, const std:
     return series;
   }
   const bool at_rounding = largest_at_floor <= floors.rounding_level();
+  series.rule = "floor";
   if (above == 0 && at_rounding && !floors.reference_limited() && !exact) {
     // A quantity that vanishes to working precision at every h satisfies any lower bound on its
     // order.

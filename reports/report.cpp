@@ -37,6 +37,7 @@ nlohmann::json series_json(const Series& series) {
       series.predicted_order ? nlohmann::json(*series.predicted_order) : nlohmann::json();
   out["exact_order"] = series.exact_order;
   out["holds"] = series.holds ? nlohmann::json(*series.holds) : nlohmann::json();
+  out["rule"] = series.rule;
   out["inconclusive"] = series.inconclusive;
   if (series.inconclusive) out["to_decide"] = series.to_decide;
   out["explanation"] = series.explanation;

@@ -227,6 +227,7 @@ Series energy_drift_series(const CaseContext<System>& context,
   Series series = sweep_series(context, "drift of " + quantity + ", averaged over returns, over T",
                                drifts, std::nullopt);
   series.fit.reset();  // judged by its own rule, not by an order: no observed order to show
+  series.rule = "energy-drift";
   nlohmann::json rows = nlohmann::json::array();
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const auto& run = runs[i];

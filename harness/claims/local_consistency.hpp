@@ -33,6 +33,7 @@ void judge_signed_coefficient(Series& series, const std::vector<T>& coefficient,
   if (N >= 3) bar = max(bar, T(abs(T(coefficient[N - 2] - coefficient[N - 3])) / 2));
   const T distance = abs(T(coefficient[N - 1] - leading));
   const T allowed = 3 * bar + floor;
+  series.rule = "signed-coefficient";
   series.holds = distance <= allowed;
   series.explanation =
       "at the smallest h the measured coefficient " + format_scalar(coefficient[N - 1], 8) +

@@ -287,6 +287,7 @@ struct ExistenceUniquenessClaim : Claim<ExistenceUniquenessClaim> {
                                      "correction at most half the previous one until rounding; T·2^" +
                                      std::to_string(doublings) + " means the search ceiling was reached";
     Series& series = claim.series.front();
+    if (!failure.empty() || !second_point.empty() || zero_at) series.rule = "step-size-search";
     if (!failure.empty()) {
       series.holds = false;
       series.explanation = failure;

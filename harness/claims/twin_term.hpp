@@ -228,6 +228,7 @@ struct MismatchedLegendreClaim : Claim<MismatchedLegendreClaim> {
     // Inconsistent: the error against the original solution must not vanish…
     Series original = sweep_series(context, "|q_N − q(T)| (original equation)", error, std::nullopt);
     bool stalls = original.fit && original.fit->ok && original.fit->order < 0.5;
+    original.rule = "does-not-converge";
     original.holds = stalls;
     original.explanation = stalls ? "the error does not vanish as h → 0 (fitted order " +
                                         format_scalar(original.fit->order, 3) + " < 1/2)"
