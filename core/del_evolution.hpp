@@ -78,11 +78,10 @@ auto del_trajectory(const System& system, const DelScheme<typename System::Scala
     if (!report.converged) {
       // Where the run was when the step failed: a step that fails partway is read against the
       // state it started from, not the initial one.
-      std::string at;
-      for (int i = 0; i < n; ++i) at += (i ? ", " : "") + to_decimal<T>(trajectory.q[k][i], 8);
       require_converged(report, "DEL step " + std::to_string(k) + " of " + std::to_string(steps) +
-                                    " with h = " + to_decimal<T>(h, 17) + " (from t = " +
-                                    to_decimal<T>(T(k * h), 8) + ", q = (" + at + "))");
+                                    " with h = " + to_decimal<T>(h, 17) +
+                                    " (from t = " + to_decimal<T>(T(k * h), 8) +
+                                    ", q = " + to_decimal_tuple<T, n>(trajectory.q[k]) + ")");
     }
     trajectory.max_iterations = std::max(trajectory.max_iterations, report.iterations);
     trajectory.q.push_back(q_next);

@@ -123,6 +123,14 @@ using Vector = Eigen::Matrix<T, n, 1>;
 template <class T, int rows, int cols>
 using Matrix = Eigen::Matrix<T, rows, cols>;
 
+// A vector as "(x_1, x_2, …)" with `digits` significant digits each, for messages.
+template <class T, int n>
+std::string to_decimal_tuple(const Vector<T, n>& v, int digits = 8) {
+  std::string text = "(";
+  for (int i = 0; i < v.size(); ++i) text += (i ? ", " : "") + to_decimal<T>(v[i], digits);
+  return text + ")";
+}
+
 // Max norm of a vector; NaN if a component is NaN (std::max would drop it and report 0).
 template <class T, int n>
 T max_norm(const Vector<T, n>& v) {

@@ -43,13 +43,26 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
       PerStepCheck<T> check;
       std::vector<T> units;
       // J_k and |p_k|·|ξ(q_k)| at each step, judged against ulps × N × ε × the largest.
-      auto judge = [&](const T& h, const std::vector<Vector<T, n>>& q, const std::vector<Vector<T, n>>& p) {
+      auto judge = [&](const T& h, const std::vector<Vector<T, n>>& q,
+                       const std::vector<Vector<T, n>>& p) {
+        using std::isfinite;
         const int N = static_cast<int>(p.size());
         T first = 0, drift = 0, size = 0;
         int worst_step = 0;
         for (int k = 0; k < N; ++k) {
           const Vector<T, n> xi = symmetry_generator(context.system, q[k]);
+          require_finite(context, xi, q[k],
+                         "at step " + std::to_string(k) + " (t = " + format_scalar(T(k * h), 8) +
+                             ") of the run with h = " + format_scalar(h, 6));
           const T J = p[k].dot(xi);
+          if (!isfinite(J))
+            throw CaseError(
+                context.spec.file, "system.lagrangian",
+                "the momentum p_k is not finite at step " + std::to_string(k) + " (t = " +
+                    format_scalar(T(k * h), 8) + ", q = " + to_decimal_tuple<T, n>(q[k]) +
+                    ") of the run with h = " + format_scalar(h, 6) +
+                    ": the discrete trajectory left the Lagrangian's domain (a formula's "
+                    "sqrt or log of a negative number, a division by zero)");
           if (k == 0) first = J;
           size = max(size, T(max_norm<T, n>(p[k]) * max_norm<T, n>(xi)));
           if (abs(T(J - first)) > drift) drift = abs(T(J - first)), worst_step = k;
@@ -124,6 +137,26 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
     check_invariance(context);
   }
 
+  // A generator that is not finite where vivv evaluates it (a formula's √ or log of a negative
+  // number along the run) would compare false with every tolerance and so pass: bad input, naming
+  // where.
+  template <LagrangianSystem System>
+  static void require_finite(const CaseContext<System>& context,
+                             const Vector<typename System::Scalar, System::dimension>& xi,
+                             const Vector<typename System::Scalar, System::dimension>& q,
+                             const std::string& where) {
+    using std::isfinite;
+    for (int i = 0; i < System::dimension; ++i)
+      if (!isfinite(xi[i]))
+        throw CaseError(
+            context.spec.file, "system.symmetry",
+            "the symmetry generator is " + to_decimal(xi[i]) + " in component " +
+                std::to_string(i + 1) + " " + where +
+                ", q = " + to_decimal_tuple<typename System::Scalar, System::dimension>(q) +
+                ": it must be finite wherever the motion goes (a formula's sqrt or log of "
+                "a negative number, a division by zero)");
+  }
+
   // L itself must be invariant under the lifted flow of ξ: δL = ∂L/∂q·ξ + ∂L/∂w·(Dξ·w) = 0 on
   // all of TQ, checked at the initial state, the reference state at T/2 and at T (one state can
   // fool it: (−y, 2x) is not a symmetry of Kepler, yet δL = 0 at a periapsis on the x axis),
@@ -152,6 +185,7 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
     const Vector<T, n>& q = state.q;
     const Vector<T, n>& w = state.w;
     const Vector<T, n> xi = symmetry_generator(context.system, q);
+    require_finite(context, xi, q, "at " + where + " of the reference flow");
     const auto d = lagrangian_derivatives(context.system, q, w);
     Vector<T, n> along = Vector<T, n>::Zero();  // Dξ(q)·w
     const T speed = max_norm<T, n>(w);
@@ -159,8 +193,12 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
       const T length = max_norm<T, n>(q) > 0 ? T(max_norm<T, n>(q)) : T(1);
       const T s = pow(epsilon<T>(), T(1) / 3) * length / speed;
       const Vector<T, n> up = q + s * w, down = q - s * w;
-      along = (symmetry_generator(context.system, up) - symmetry_generator(context.system, down)) /
-              (up - down).dot(w) * w.dot(w);
+      const Vector<T, n> xi_up = symmetry_generator(context.system, up);
+      const Vector<T, n> xi_down = symmetry_generator(context.system, down);
+      require_finite(context, xi_up, up, "beside " + where + " (a difference quotient's sample)");
+      require_finite(context, xi_down, down,
+                     "beside " + where + " (a difference quotient's sample)");
+      along = (xi_up - xi_down) / (up - down).dot(w) * w.dot(w);
     }
     T variation = 0, size = 0;
     for (int i = 0; i < n; ++i) {
