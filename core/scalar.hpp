@@ -6,11 +6,15 @@
 // their traits live.
 #pragma once
 
+#include <Eigen/Dense>
 #include <boost/multiprecision/eigen.hpp>
 #include <boost/multiprecision/float128.hpp>
 #include <boost/multiprecision/mpfr.hpp>
-#include <Eigen/Dense>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -75,14 +79,22 @@ std::string scalar_name() {
 template <class T>
 T from_decimal(const std::string& text) {
   if (text.empty()) throw std::invalid_argument("empty number");
-  std::size_t used = 0;
-  if constexpr (std::is_same_v<T, double>) {
-    T value = std::stod(text, &used);
-    if (used != text.size()) throw std::invalid_argument("not a number: '" + text + "'");
-    return value;
-  } else if constexpr (std::is_same_v<T, long double>) {
-    T value = std::stold(text, &used);
-    if (used != text.size()) throw std::invalid_argument("not a number: '" + text + "'");
+  if constexpr (std::is_same_v<T, double> || std::is_same_v<T, long double>) {
+    // strtod, not std::stod: stod throws a bare "stod" for a subnormal result such as 1e-320,
+    // which is a valid double.
+    errno = 0;
+    char* end = nullptr;
+    const T value = std::is_same_v<T, double> ? std::strtod(text.c_str(), &end)
+                                              : std::strtold(text.c_str(), &end);
+    if (end != text.c_str() + text.size() || std::isspace(static_cast<unsigned char>(text.front())))
+      throw std::invalid_argument("not a number: '" + text + "'");
+    if (errno == ERANGE && (std::isinf(value) || value == 0)) {
+      std::ostringstream range;
+      range << std::setprecision(2) << std::numeric_limits<T>::denorm_min() << " and "
+            << std::numeric_limits<T>::max();
+      throw std::out_of_range("'" + text + "' is out of range for " + scalar_name<T>() +
+                              ": its magnitude must lie between " + range.str() + ", or be 0");
+    }
     return value;
   } else {
     // Boost accepts only a complete decimal number and throws otherwise.

@@ -30,6 +30,27 @@ TEST(Scalar, MalformedDecimalIsRejected) {
   EXPECT_THROW(from_decimal<mpfr_real>("1..2"), std::invalid_argument);
 }
 
+// A subnormal double is a valid value (std::stod refused it with a bare "stod"); a value that
+// overflows or underflows to 0 is out of range, naming the text and the range.
+TEST(Scalar, SubnormalDecimalsAreReadAndOutOfRangeOnesNamed) {
+  EXPECT_EQ(from_decimal<double>("1e-320"), std::strtod("1e-320", nullptr));
+  EXPECT_GT(from_decimal<double>("1e-320"), 0.0);
+  EXPECT_GT(from_decimal<long double>("1e-4940"), 0.0L);
+  EXPECT_EQ(from_decimal<double>("0"), 0.0);
+  EXPECT_EQ(from_decimal<double>("-0.0"), 0.0);
+  for (const char* text : {"1e400", "-1e400", "1e-400"}) {
+    try {
+      from_decimal<double>(text);
+      ADD_FAILURE() << text << " was read";
+    } catch (const std::out_of_range& error) {
+      EXPECT_NE(std::string(error.what()).find(text), std::string::npos) << error.what();
+      EXPECT_NE(std::string(error.what()).find("double"), std::string::npos) << error.what();
+    }
+  }
+  EXPECT_THROW(from_decimal<long double>("1e5000"), std::out_of_range);
+  EXPECT_THROW(from_decimal<double>(" 1"), std::invalid_argument);
+}
+
 TEST(Scalar, EigenSolvesInQuadAndMpfr) {
   PrecisionGuard guard(50);
   Matrix<mpfr_real, 2, 2> a;
