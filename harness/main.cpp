@@ -9,6 +9,7 @@
 // Exit codes: 0 every claim holds (or fails as the case expects: xfail), 1 a
 // claim fails, errs or passes although marked xfail, 2 bad input (the message
 // names the file, the field and what was expected; no report is written).
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -26,6 +27,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -89,6 +91,9 @@ struct RunOptions {
   std::optional<int> max_seconds;  // --max-seconds: each case's budget of wall time
   bool progress = isatty(STDERR_FILENO);
   bool refine = false;
+  // --keep-going: a case refused as bad input while it runs is recorded as refused, the other
+  // cases keep their results, and the run still exits 2.
+  bool keep_going = false;
 };
 
 std::string default_suite_directory() { return std::string(VIVV_SOURCE_DIR) + "/cases/suite"; }
@@ -172,6 +177,8 @@ RunOptions parse_run_options(const std::vector<std::string>& args) {
     else if (arg == "--progress") options.progress = true;
     else if (arg == "--quiet") options.progress = false;
     else if (arg == "--refine") options.refine = true;
+    else if (arg == "--keep-going")
+      options.keep_going = true;
     else if (arg.rfind("--", 0) == 0) throw BadInput("unknown option '" + arg + "'");
     else options.case_files.push_back(arg);
   }
@@ -184,17 +191,24 @@ RunOptions parse_run_options(const std::vector<std::string>& args) {
 char budget_message[512] = "";
 std::size_t budget_message_length = 0;
 int budget_seconds = 0;
+bool budget_keeps_going = false;  // --keep-going: the run goes on and writes its reports
 
 void note_phase(const std::string& file, const std::string& phase) {
-  const std::string text = "vivv: " + file.substr(0, 200) + ": the case ran past its budget of " +
-                           std::to_string(budget_seconds) + " s (--max-seconds) while computing: " +
-                           phase.substr(0, 200) + "; no report written\n";
+  const std::string text =
+      "vivv: " + file.substr(0, 200) + ": the case ran past its budget of " +
+      std::to_string(budget_seconds) +
+      " s (--max-seconds) while computing: " + phase.substr(0, 200) +
+      (budget_keeps_going ? "; recorded as refused (--keep-going)\n" : "; no report written\n");
   budget_message_length = std::min(text.size(), sizeof budget_message);
   std::memcpy(budget_message, text.data(), budget_message_length);
 }
 
+// Under --keep-going, the worker's file for the message of its refusal (-1: none).
+int refusal_fd = -1;
+
 extern "C" void budget_exhausted(int) {
   [[maybe_unused]] auto written = ::write(STDERR_FILENO, budget_message, budget_message_length);
+  if (refusal_fd >= 0) written = ::write(refusal_fd, budget_message, budget_message_length);
   std::_Exit(exit_bad_input);  // nothing was written
 }
 
@@ -334,9 +348,12 @@ class NoteInterrupts {
 
 // Runs the cases in up to `jobs` worker processes (MPFR's working precision
 // is process-wide in Boost 1.74, so parallel cases need processes, not threads).
+// Each case's result, in order; under --keep-going a case refused as bad input is
+// {"refused": message} (each case then runs in a worker process, so that a --max-seconds budget
+// that ends it leaves the others).
 std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const RunOptions& options) {
   std::vector<nlohmann::json> results(specs.size());
-  if (options.jobs == 1) {
+  if (options.jobs == 1 && !options.keep_going) {
     for (std::size_t i = 0; i < specs.size(); ++i) results[i] = run_one(specs[i], options);
     return results;
   }
@@ -369,6 +386,20 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
                  (signal == SIGKILL ? ", perhaps by the kernel for want of memory" : "") + "\n";
       return;
     }
+    if (options.keep_going && WIFEXITED(status) && WEXITSTATUS(status) == exit_bad_input) {
+      std::ifstream in(work / (std::to_string(index) + ".refused"));
+      std::string message((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      while (!message.empty() && message.back() == '\n') message.pop_back();
+      if (message.rfind("vivv: ", 0) == 0) message.erase(0, 6);  // the budget's stderr line
+      if (const std::string unwritten = "; recorded as refused (--keep-going)";
+          message.size() >= unwritten.size() &&
+          message.compare(message.size() - unwritten.size(), unwritten.size(), unwritten) == 0)
+        message.erase(message.size() - unwritten.size());
+      results[index] = {{"refused", message.empty()
+                                        ? "refused in its worker process (see the messages above)"
+                                        : message}};
+      return;
+    }
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
       failures += specs[index].file + " failed in its worker process\n";
       return;
@@ -395,10 +426,17 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
       }
       if (pid == 0) {
         int code = 0;
+        if (options.keep_going)
+          refusal_fd = ::open((work / (std::to_string(next) + ".refused")).c_str(),
+                              O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
         try {
           write_exclusively(work / (std::to_string(next) + ".json"), run_one(specs[next], options).dump());
         } catch (const std::exception& error) {
           code = bad_input(error.what());
+          if (refusal_fd >= 0) {
+            const std::string message = std::string(error.what()).substr(0, 2000);
+            [[maybe_unused]] auto written = ::write(refusal_fd, message.data(), message.size());
+          }
         }
         std::_Exit(code);
       }
@@ -487,13 +525,28 @@ int command_run(const std::vector<std::string>& args, const std::string& command
       positions.push_back(k);
   std::vector<CaseSpec> selected;
   for (std::size_t k : positions) selected.push_back(specs[k]);
-  std::vector<nlohmann::json> cases = run_all(selected, options);
+  budget_keeps_going = options.keep_going;
+  std::vector<nlohmann::json> results = run_all(selected, options);
+  std::vector<nlohmann::json> cases;
+  std::vector<std::size_t> case_positions;
+  nlohmann::json refused = nlohmann::json::array();
   nlohmann::json case_paths = nlohmann::json::object();  // absolute paths: run block only
   for (std::size_t i = 0; i < selected.size(); ++i) {
-    cases[i]["file"] = report_file_name(selected[i].file);
     case_paths[selected[i].name] = fs::absolute(selected[i].file).lexically_normal().string();
+    if (results[i].contains("refused")) {
+      nlohmann::json entry = {{"file", report_file_name(selected[i].file)},
+                              {"name", selected[i].name},
+                              {"message", results[i]["refused"]}};
+      if (options.shard) entry["position"] = positions[i];
+      refused.push_back(entry);
+      continue;
+    }
+    results[i]["file"] = report_file_name(selected[i].file);
+    cases.push_back(std::move(results[i]));
+    case_positions.push_back(positions[i]);
   }
   nlohmann::json report = assemble_report(cases, {command_line, library_versions()});
+  if (!refused.empty()) report["refused"] = refused;
   report["run"]["case_paths"] = case_paths;
   report["run"]["overrides"] = {
       {"digits", options.digits ? nlohmann::json(*options.digits) : nlohmann::json()},
@@ -506,7 +559,7 @@ int command_run(const std::vector<std::string>& args, const std::string& command
                               {"count", options.shard->count},
                               {"suite_size", specs.size()},
                               {"suite", suite},
-                              {"positions", positions}};
+                              {"positions", case_positions}};
   }
   return write_reports(options.out, report);
 }
@@ -519,6 +572,7 @@ int write_reports(const std::string& out, const nlohmann::json& report) {
   std::cout << "report:";
   for (const auto& path : paths) std::cout << " " << path;
   std::cout << "\n";
+  if (report.contains("refused") && !report["refused"].empty()) return exit_bad_input;
   return run_succeeded(report["summary"]) ? exit_pass : exit_fail;
 }
 
@@ -603,7 +657,7 @@ int command_list() {
 int usage(std::ostream& out, int code) {
   out << "usage: vivv run [CASE.json ...] [--out DIR] [--digits D] [--scalar S] [--jobs J] "
          "[--shard I/N] [--refine]\n"
-         "                [--max-seconds S] [--progress|--quiet]\n"
+         "                [--max-seconds S] [--keep-going] [--progress|--quiet]\n"
          "       vivv report REPORT.json [MORE.json ...] --out DIR\n"
          "       vivv list\n"
          "       vivv bench reference|del\n"
@@ -620,7 +674,9 @@ int run_help(std::ostream& out) {
          "every\n"
          "claim passes (or fails as its case expects), 1 when one fails, is inconclusive, errs or "
          "passes\n"
-         "unexpectedly, 2 for bad input (nothing written).\n"
+         "unexpectedly, 2 for bad input (nothing written; with --keep-going, a case refused while "
+         "it "
+         "runs).\n"
          "  --out DIR          where the three files go (default vivv-report); checked before any "
          "case runs\n"
          "  --digits D         MPFR working precision in decimal digits, 20 … "
@@ -639,6 +695,10 @@ int run_help(std::ostream& out) {
          "                     says why the sweep stopped\n"
          "  --max-seconds S    wall-time budget of each case; past it the case is refused naming "
          "its phase\n"
+         "  --keep-going       a case refused while it runs (bad input, past its budget) is "
+         "recorded as\n"
+         "                     refused in the reports and the others keep their results; exit "
+         "still 2\n"
          "  --progress         progress lines on stderr (the default on a terminal)\n"
          "  --quiet            no progress lines\n"
          "  --help, -h         this text\n";

@@ -44,6 +44,7 @@ pre { background: var(--panel); padding: 8px 10px; overflow-x: auto; border-radi
 .v-inconclusive { color: #5b2a86; background: #efe4fa; border-color: #c3a3e3; }
 .note-cell { font-size: 12px; color: var(--muted); }
 .summary .verdict { font-size: 15px; padding: 4px 14px; }
+.attention li { margin: 5px 0; }
 table { border-collapse: collapse; }
 table.findings { width: 100%; font-size: 13px; }
 table.findings th, table.findings td { border-bottom: 1px solid var(--rule); padding: 5px 7px;
@@ -914,11 +915,23 @@ std::string render_html(const json& report) {
   int total = 0;
   std::string counts, badges;
   for (const auto& [verdict, count] : summary.items()) total += count.get<int>();
+  const json refused = report.value("refused", json::array());
+  // A claim needs attention unless it passed or failed as its case expects.
+  const auto needs_attention = [](const std::string& verdict) {
+    return verdict != "pass" && verdict != "xfail";
+  };
   for (const char* verdict : {"pass", "fail", "inconclusive", "error", "xfail", "xpass"}) {
     const int count = summary.value(verdict, 0);
     counts += std::string(counts.empty() ? "" : ", ") + std::to_string(count) + " " + verdict;
-    badges += "<span class=\"verdict v-" + std::string(verdict) + "\" data-count=\"" + verdict + "\">" +
-              std::to_string(count) + " " + verdict + "</span>";
+    // Each badge links to where its claims are listed: the non-passing ones to "Needs attention".
+    const std::string target = count > 0 && needs_attention(verdict) ? "#attention" : "#findings";
+    badges += "<a class=\"verdict v-" + std::string(verdict) + "\" data-count=\"" + verdict +
+              "\" href=\"" + target + "\">" + std::to_string(count) + " " + verdict + "</a>";
+  }
+  if (!refused.empty()) {
+    counts += ", " + std::to_string(refused.size()) + " refused";
+    badges += "<a class=\"verdict v-error\" data-count=\"refused\" href=\"#attention\">" +
+              std::to_string(refused.size()) + " refused</a>";
   }
   std::ostringstream page;
   page << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
@@ -939,6 +952,34 @@ std::string render_html(const json& report) {
       claims.emplace_back(&cases[i], &claim, text_of(cases[i], "name") + "/" + text_of(claim, "id"),
                           "claim-" + std::to_string(i) + "-" + std::to_string(k));
     }
+
+  // Failures first: every claim that did not pass and every refused case, each linked to its
+  // section, with the series that decided it and why, before the full findings table.
+  std::ostringstream attention;
+  for (std::size_t i = 0; i < refused.size(); ++i)
+    attention << "<li data-attention=\"refused\"><span class=\"verdict v-error\">refused</span> <b>"
+              << escape(text_of(refused[i], "name")) << "</b> <span class=\"small\">("
+              << escape(text_of(refused[i], "file"))
+              << ")</span>: " << escape(text_of(refused[i], "message")) << "</li>\n";
+  for (const auto& [c, claim, key, anchor] : claims) {
+    const std::string verdict = text_of(*claim, "verdict");
+    if (!needs_attention(verdict)) continue;
+    const json series = claim->value("series", json::array());
+    const std::size_t decisive = claim->value("decisive_series", 0);
+    attention << "<li data-attention=\"" << escape(verdict) << "\" data-attention-claim=\""
+              << escape(key) << "\">" << verdict_badge(verdict) << " <a href=\"#" << anchor << "\">"
+              << escape(key) << "</a>";
+    if (decisive < series.size())
+      attention << " <span class=\"small\">decided by "
+                << escape(text_of(series[decisive], "label")) << "</span>";
+    attention << ": " << escape(text_of(*claim, "explanation")) << "</li>\n";
+  }
+  if (!attention.str().empty())
+    page << "<h2 id=\"attention\">Needs attention</h2>\n<p class=\"lede\">Every claim that did not "
+            "pass (or did not fail as its case expects) and every case refused, first; each links "
+            "to "
+            "its section.</p>\n<ul class=\"attention\">\n"
+         << attention.str() << "</ul>\n";
 
   page << "<h2 id=\"findings\">Findings</h2>\n<p class=\"lede\">One row per claim. Predicted "
           "orders are the theorems' lower bounds (&#8805;) unless the case declares the exact "

@@ -54,15 +54,17 @@ std::string render_junit(const nlohmann::json& report) {
   const auto& summary = report["summary"];
   int total = 0;
   for (const auto& [verdict, count] : summary.items()) total += count.get<int>();
+  // A case --keep-going refused is one testcase with an error (bad input, no claim computed).
+  const nlohmann::json refused = report.value("refused", nlohmann::json::array());
   const nlohmann::json seconds = report["run"].value("case_seconds", nlohmann::json::object());
   // JUnit's words: a failing claim and an xpass (a known failure that went away) are failures,
   // an xfail is skipped with its reason.
   std::ostringstream out;
   out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  out << "<testsuites name=\"vivv\" tests=\"" << total << "\" failures=\""
+  out << "<testsuites name=\"vivv\" tests=\"" << total + refused.size() << "\" failures=\""
       << summary.value("fail", 0) + summary.value("inconclusive", 0) + summary.value("xpass", 0)
-      << "\" errors=\"" << summary.value("error", 0) << "\" skipped=\"" << summary.value("xfail", 0)
-      << "\">\n";
+      << "\" errors=\"" << summary.value("error", 0) + refused.size() << "\" skipped=\""
+      << summary.value("xfail", 0) << "\">\n";
   for (const auto& c : report["cases"]) {
     std::string name = c["name"];
     int failures = 0, errors = 0, skipped = 0;
@@ -98,6 +100,16 @@ std::string render_junit(const nlohmann::json& report) {
       out << "    </testcase>\n";
     }
     out << "  </testsuite>\n";
+  }
+  for (const auto& entry : refused) {
+    const std::string name = string_field(entry, "name");
+    out << "  <testsuite name=\"" << xml_escape(name)
+        << "\" tests=\"1\" failures=\"0\" errors=\"1\" skipped=\"0\">\n"
+        << "    <testcase classname=\"" << xml_escape(name) << "\" name=\"refused\">\n"
+        << "      <error type=\"refused\" message=\"" << xml_escape(string_field(entry, "message"))
+        << "\">" << xml_escape(string_field(entry, "file") + ": " + string_field(entry, "message"))
+        << "</error>\n"
+        << "    </testcase>\n  </testsuite>\n";
   }
   out << "</testsuites>\n";
   return out.str();

@@ -255,6 +255,21 @@ std::optional<std::vector<std::size_t>> shard_positions(
     const nlohmann::json& at = shard.at("positions");
     if (!at.is_array() || at.size() != report.at("cases").size())
       throw ReportError(file + ": run.shard.positions: expected one position per case");
+    // A case --keep-going refused holds its position too (it is not in "cases").
+    const nlohmann::json refused = report.value("refused", nlohmann::json::array());
+    for (std::size_t i = 0; i < refused.size(); ++i) {
+      if (!refused[i].contains("position"))
+        throw ReportError(file + ": refused[" + std::to_string(i) +
+                          "].position: missing in a shard");
+      const auto k = refused[i]["position"].get<std::size_t>();
+      if (k >= size || refused[i].at("name") != shard["suite"][k])
+        throw ReportError(file + ": refused[" + std::to_string(i) + "]: '" +
+                          refused[i].at("name").get<std::string>() +
+                          "' is not the suite's case at position " + refused[i]["position"].dump());
+      if (auto [it, fresh] = positions.emplace(k, file); !fresh)
+        throw ReportError(file + ": refused[" + std::to_string(i) + "].position: position " +
+                          std::to_string(k) + " is also in " + it->second);
+    }
     for (std::size_t i = 0; i < at.size(); ++i) {
       const nlohmann::json& position = at[i];
       const auto k = position.get<std::size_t>();
@@ -284,6 +299,7 @@ nlohmann::json merge_reports(const std::vector<std::pair<std::string, nlohmann::
   nlohmann::json run_json = run_block(run);
   run_json["merged_from"] = nlohmann::json::array();
   nlohmann::json cases = nlohmann::json::array();
+  nlohmann::json refused = nlohmann::json::array();
   std::map<std::string, std::string> seen;  // case name -> report it came from
   for (const auto& [file, report] : inputs) {
     if (!report.is_object() || report.value("schema", "") != report_schema)
@@ -297,6 +313,13 @@ nlohmann::json merge_reports(const std::vector<std::pair<std::string, nlohmann::
         throw ReportError(file + ": cases: the case '" + name + "' is also in " + it->second);
       cases.push_back(c);
     }
+    for (const auto& entry : report.value("refused", nlohmann::json::array())) {
+      std::string name = entry.at("name");
+      auto [it, fresh] = seen.emplace(name, file);
+      if (!fresh)
+        throw ReportError(file + ": refused: the case '" + name + "' is also in " + it->second);
+      refused.push_back(entry);
+    }
     const nlohmann::json& source_run = report.at("run");
     const nlohmann::json case_seconds = source_run.value("case_seconds", nlohmann::json::object());
     for (const auto& [name, seconds] : case_seconds.items())
@@ -307,14 +330,20 @@ nlohmann::json merge_reports(const std::vector<std::pair<std::string, nlohmann::
   }
   // The shards of one split merge into the suite's order: the unsharded run's report.
   if (auto positions = shard_positions(inputs)) {
-    std::vector<nlohmann::json> by_position(positions->size());
+    // Suite order; the positions of refused cases stay empty and are dropped.
+    std::map<std::size_t, nlohmann::json> by_position;
     for (std::size_t i = 0; i < positions->size(); ++i) by_position[(*positions)[i]] = cases[i];
-    cases = by_position;
+    cases = nlohmann::json::array();
+    for (auto& [position, c] : by_position) cases.push_back(std::move(c));
+    std::sort(refused.begin(), refused.end(), [](const nlohmann::json& a, const nlohmann::json& b) {
+      return a.at("position").get<std::size_t>() < b.at("position").get<std::size_t>();
+    });
   }
   nlohmann::json merged = {{"schema", report_schema},
                            {"run", run_json},
                            {"summary", verdict_counts(cases)},
                            {"cases", cases}};
+  if (!refused.empty()) merged["refused"] = refused;
   // Never write a report that breaks the schema: every input followed it, so this is vivv's
   // own error, but it is caught before any file is written.
   if (auto violation = schema_violation(merged))
@@ -569,7 +598,16 @@ void print_claims_table(std::ostream& out, const nlohmann::json& report) {
         << range(sweep.value("requested_steps", nlohmann::json::array()))
         << "); stopped: " << sweep.value("stopped", std::string()) << "\n";
   }
-  out << "claims: " << summary_text(report["summary"]) << "\n";
+  // Cases --keep-going recorded as refused: what refused each (the run exits 2).
+  const nlohmann::json refused = report.value("refused", nlohmann::json::array());
+  for (const auto& entry : refused)
+    out << entry.value("name", std::string())
+        << ": refused: " << entry.value("message", std::string()) << "\n";
+  out << "claims: " << summary_text(report["summary"]);
+  if (!refused.empty())
+    out << "; " << refused.size() << " case" << (refused.size() == 1 ? "" : "s")
+        << " refused (exit 2)";
+  out << "\n";
 }
 
 }  // namespace vivv

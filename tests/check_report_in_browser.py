@@ -90,6 +90,28 @@ def main(argv):
     shown = Counter(re.findall(r'<tr class="row-(pass|fail|inconclusive|error|xfail|xpass)', dom))
     if shown != verdicts:
         problems.append(f"findings rows show verdicts {dict(shown)}, report.json has {dict(verdicts)}")
+    # Failures first: every claim that did not pass (or xfail) and every refused case is listed
+    # once under "Needs attention", linked to its section; no section when there is none; every
+    # verdict badge is a link.
+    attention_expected = [f"{case['name']}/{claim['id']}" for case in report["cases"]
+                          for claim in case["claims"] if claim["verdict"] not in ("pass", "xfail")]
+    listed = attribute_values(dom, "data-attention-claim")
+    if sorted(listed.elements()) != sorted(attention_expected):
+        problems.append(f"'Needs attention' lists {sorted(listed.elements())}, expected {sorted(attention_expected)}")
+    refused_shown = len(re.findall(r'data-attention="refused"', dom))
+    if refused_shown != len(report.get("refused", [])):
+        problems.append(f"'Needs attention' shows {refused_shown} refused cases, report.json has "
+                        f"{len(report.get('refused', []))}")
+    has_section = 'id="attention"' in dom
+    if has_section != bool(attention_expected or report.get("refused")):
+        problems.append(f"'Needs attention' section {'present' if has_section else 'missing'}")
+    for match in re.finditer(r'<li data-attention="(?!refused)[^"]*" data-attention-claim="[^"]*">(.*?)</li>', dom, re.S):
+        anchor = re.search(r'<a href="#(claim-[0-9]+-[0-9]+)">', match.group(1))
+        if not anchor or f'id="{anchor.group(1)}"' not in dom:
+            problems.append(f"'Needs attention' entry without a working link: {match.group(1)[:120]}")
+    badges = re.findall(r'<(\w+) class="verdict v-\w+" data-count="\w+"( href="#\w+")?', dom)
+    if not badges or any(tag != "a" or not href for tag, href in badges):
+        problems.append(f"verdict badges are not all links: {badges}")
     # Self-contained: no scripts, stylesheets, images or fonts fetched from anywhere.
     for fetched in re.findall(r'<(?:script|link|img|iframe)\b[^>]*(?:src|href)="([^"]*)"', dom):
         problems.append(f"page loads {fetched}")
