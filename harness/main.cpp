@@ -40,6 +40,7 @@
 #include "cases/case_file.hpp"
 #include "cases/catalogue.hpp"
 #include "core/discrete_lagrangian.hpp"
+#include "harness/baseline.hpp"
 #include "harness/bench_del.hpp"
 #include "harness/bench_reference.hpp"
 #include "harness/claims.hpp"
@@ -94,6 +95,9 @@ struct RunOptions {
   // --keep-going: a case refused as bad input while it runs is recorded as refused, the other
   // cases keep their results, and the run still exits 2.
   bool keep_going = false;
+  // --baseline OLD/report.json: each claim's fitted series compared with OLD's (regressed: exit 1).
+  std::optional<std::string> baseline;
+  double baseline_tolerance = default_baseline_tolerance;
 };
 
 std::string default_suite_directory() { return std::string(VIVV_SOURCE_DIR) + "/cases/suite"; }
@@ -179,7 +183,27 @@ RunOptions parse_run_options(const std::vector<std::string>& args) {
     else if (arg == "--refine") options.refine = true;
     else if (arg == "--keep-going")
       options.keep_going = true;
-    else if (arg.rfind("--", 0) == 0) throw BadInput("unknown option '" + arg + "'");
+    else if (arg == "--baseline")
+      options.baseline = value();
+    else if (arg == "--baseline-tolerance") {
+      const std::string text = value();
+      std::size_t used = 0;
+      double tolerance = 0;
+      try {
+        tolerance = std::stod(text, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      // Above 0 (a constant equal to the last digit would regress) and at most 10 (×11).
+      if (used != text.size() || !(tolerance > 0 && tolerance <= 10))
+        throw BadInput(
+            "--baseline-tolerance: expected the allowed growth of the error constant as a fraction "
+            "in (0, "
+            "10] (0.1 allows 10 %), got '" +
+            text + "'");
+      options.baseline_tolerance = tolerance;
+    } else if (arg.rfind("--", 0) == 0)
+      throw BadInput("unknown option '" + arg + "'");
     else options.case_files.push_back(arg);
   }
   if (options.case_files.empty()) options.case_files = default_suite();
@@ -515,6 +539,15 @@ int command_run(const std::vector<std::string>& args, const std::string& command
     if (!fresh)
       throw CaseError(file, "name", "'" + specs.back().name + "' is also the name of " + it->second);
   }
+  // The baseline is read (and checked like any input of vivv report) before any case computes.
+  std::optional<nlohmann::json> baseline;
+  if (options.baseline) {
+    try {
+      baseline = read_report(*options.baseline);
+    } catch (const std::exception& error) {
+      throw BadInput("--baseline: " + std::string(error.what()));
+    }
+  }
   // The options against every case before any computes: a case they cannot run refuses the run.
   for (const auto& spec : specs) check_precision_options(spec, options.scalar, options.digits);
   // Every case file is read and checked above, so that each shard refuses the same bad input;
@@ -547,6 +580,8 @@ int command_run(const std::vector<std::string>& args, const std::string& command
   }
   nlohmann::json report = assemble_report(cases, {command_line, library_versions()});
   if (!refused.empty()) report["refused"] = refused;
+  if (baseline)
+    compare_with_baseline(report, *baseline, *options.baseline, options.baseline_tolerance);
   report["run"]["case_paths"] = case_paths;
   report["run"]["overrides"] = {
       {"digits", options.digits ? nlohmann::json(*options.digits) : nlohmann::json()},
@@ -573,7 +608,7 @@ int write_reports(const std::string& out, const nlohmann::json& report) {
   for (const auto& path : paths) std::cout << " " << path;
   std::cout << "\n";
   if (report.contains("refused") && !report["refused"].empty()) return exit_bad_input;
-  return run_succeeded(report["summary"]) ? exit_pass : exit_fail;
+  return run_succeeded(report["summary"]) && regressed_claims(report) == 0 ? exit_pass : exit_fail;
 }
 
 // vivv report A.json [B.json ...] --out DIR: the cases of every report in one,
@@ -657,7 +692,9 @@ int command_list() {
 int usage(std::ostream& out, int code) {
   out << "usage: vivv run [CASE.json ...] [--out DIR] [--digits D] [--scalar S] [--jobs J] "
          "[--shard I/N] [--refine]\n"
-         "                [--max-seconds S] [--keep-going] [--progress|--quiet]\n"
+         "                [--max-seconds S] [--keep-going] [--baseline OLD/report.json "
+         "[--baseline-tolerance X]]\n"
+         "                [--progress|--quiet]\n"
          "       vivv report REPORT.json [MORE.json ...] --out DIR\n"
          "       vivv list\n"
          "       vivv bench reference|del\n"
@@ -695,6 +732,16 @@ int run_help(std::ostream& out) {
          "                     says why the sweep stopped\n"
          "  --max-seconds S    wall-time budget of each case; past it the case is refused naming "
          "its phase\n"
+         "  --baseline OLD/report.json\n"
+         "                     compare each claim's fitted orders and error constants with OLD's "
+         "(same case,\n"
+         "                     claim and series): an order that dropped by more than the order "
+         "tolerance, or\n"
+         "                     a constant grown by more than --baseline-tolerance, is a "
+         "regression (exit 1)\n"
+         "  --baseline-tolerance X\n"
+         "                     the allowed growth of the error constant, a fraction (default 0.1: "
+         "10 %)\n"
          "  --keep-going       a case refused while it runs (bad input, past its budget) is "
          "recorded as\n"
          "                     refused in the reports and the others keep their results; exit "

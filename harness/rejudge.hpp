@@ -11,7 +11,7 @@ namespace vivv {
 
 // Throws ReportError naming `path`, the case, the claim and the series when a series' recorded
 // fit (its observed order, the points it used) differs from the one its h and errors give, or
-// when a series the order rule judged ("observed order …") is recorded as holding but fails or
+// when a series the order rule judged (rule "order") is recorded as holding but fails or
 // is inconclusive when judged again. Not checked: the other direction (a claim may turn a
 // failing series inconclusive, e.g. steps too large for the motion), series judged by another
 // rule (lagrangian-order's signed coefficient), and the identity and drift claims' own tests.

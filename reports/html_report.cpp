@@ -749,6 +749,11 @@ std::string notes_html(const json& c, const json& claim) {
   if (!text_of(claim, "detection_limit").empty())
     notes += "<div class=\"note-cell\" data-note=\"detection-limit\">detection limit: " +
              escape(text_of(claim, "detection_limit")) + "</div>";
+  if (claim.contains("baseline") && claim["baseline"].is_object())
+    notes += "<div class=\"note-cell\" data-note=\"baseline\"><b>" +
+             escape(text_of(claim["baseline"], "status")) +
+             "</b> against the baseline: " + escape(text_of(claim["baseline"], "explanation")) +
+             "</div>";
   return notes;
 }
 
@@ -928,6 +933,14 @@ std::string render_html(const json& report) {
     badges += "<a class=\"verdict v-" + std::string(verdict) + "\" data-count=\"" + verdict +
               "\" href=\"" + target + "\">" + std::to_string(count) + " " + verdict + "</a>";
   }
+  const int regressed_count = run.contains("baseline") && run["baseline"].is_object()
+                                  ? run["baseline"].value("regressed", 0)
+                                  : 0;
+  if (regressed_count > 0) {
+    counts += ", " + std::to_string(regressed_count) + " regressed";
+    badges += "<a class=\"verdict v-fail\" data-count=\"regressed\" href=\"#attention\">" +
+              std::to_string(regressed_count) + " regressed</a>";
+  }
   if (!refused.empty()) {
     counts += ", " + std::to_string(refused.size()) + " refused";
     badges += "<a class=\"verdict v-error\" data-count=\"refused\" href=\"#attention\">" +
@@ -963,6 +976,13 @@ std::string render_html(const json& report) {
               << ")</span>: " << escape(text_of(refused[i], "message")) << "</li>\n";
   for (const auto& [c, claim, key, anchor] : claims) {
     const std::string verdict = text_of(*claim, "verdict");
+    const bool regressed = claim->contains("baseline") && (*claim)["baseline"].is_object() &&
+                           text_of((*claim)["baseline"], "status") == "regressed";
+    if (regressed)
+      attention << "<li data-attention=\"regressed\" data-attention-claim=\"" << escape(key)
+                << "\"><span class=\"verdict v-fail\">regressed</span> <a href=\"#" << anchor
+                << "\">" << escape(key) << "</a>: against the baseline: "
+                << escape(text_of((*claim)["baseline"], "explanation")) << "</li>\n";
     if (!needs_attention(verdict)) continue;
     const json series = claim->value("series", json::array());
     const std::size_t decisive = claim->value("decisive_series", 0);
@@ -976,9 +996,8 @@ std::string render_html(const json& report) {
   }
   if (!attention.str().empty())
     page << "<h2 id=\"attention\">Needs attention</h2>\n<p class=\"lede\">Every claim that did not "
-            "pass (or did not fail as its case expects) and every case refused, first; each links "
-            "to "
-            "its section.</p>\n<ul class=\"attention\">\n"
+            "pass (or did not fail as its case expects), regressed against the baseline, and every "
+            "case refused, first; each links to its section.</p>\n<ul class=\"attention\">\n"
          << attention.str() << "</ul>\n";
 
   page << "<h2 id=\"findings\">Findings</h2>\n<p class=\"lede\">One row per claim. Predicted "

@@ -50,6 +50,15 @@ std::string evidence_summary(const nlohmann::json& claim) {
   return out.str();
 }
 
+// A claim --baseline found regressed whose verdict alone is not a JUnit failure (a pass or an
+// xfail): it becomes a failure of type "regressed".
+bool regressed_only(const nlohmann::json& claim) {
+  const std::string verdict = claim.value("verdict", std::string());
+  return (verdict == "pass" || verdict == "xfail") && claim.contains("baseline") &&
+         claim["baseline"].is_object() &&
+         claim["baseline"].value("status", std::string()) == "regressed";
+}
+
 std::string render_junit(const nlohmann::json& report) {
   const auto& summary = report["summary"];
   int total = 0;
@@ -59,12 +68,17 @@ std::string render_junit(const nlohmann::json& report) {
   const nlohmann::json seconds = report["run"].value("case_seconds", nlohmann::json::object());
   // JUnit's words: a failing claim and an xpass (a known failure that went away) are failures,
   // an xfail is skipped with its reason.
+  int regressed = 0, regressed_xfail = 0;
+  for (const auto& c : report["cases"])
+    for (const auto& claim : c["claims"])
+      if (regressed_only(claim)) ++regressed, regressed_xfail += claim["verdict"] == "xfail";
   std::ostringstream out;
   out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   out << "<testsuites name=\"vivv\" tests=\"" << total + refused.size() << "\" failures=\""
-      << summary.value("fail", 0) + summary.value("inconclusive", 0) + summary.value("xpass", 0)
+      << summary.value("fail", 0) + summary.value("inconclusive", 0) + summary.value("xpass", 0) +
+             regressed
       << "\" errors=\"" << summary.value("error", 0) + refused.size() << "\" skipped=\""
-      << summary.value("xfail", 0) << "\">\n";
+      << summary.value("xfail", 0) - regressed_xfail << "\">\n";
   for (const auto& c : report["cases"]) {
     std::string name = c["name"];
     int failures = 0, errors = 0, skipped = 0;
@@ -72,7 +86,8 @@ std::string render_junit(const nlohmann::json& report) {
       failures += claim["verdict"] == "fail" || claim["verdict"] == "inconclusive" ||
                   claim["verdict"] == "xpass";
       errors += claim["verdict"] == "error";
-      skipped += claim["verdict"] == "xfail";
+      skipped += claim["verdict"] == "xfail" && !regressed_only(claim);
+      failures += regressed_only(claim);
     }
     out << "  <testsuite name=\"" << xml_escape(name) << "\" tests=\"" << c["claims"].size()
         << "\" failures=\"" << failures << "\" errors=\"" << errors << "\" skipped=\"" << skipped << "\"";
@@ -92,6 +107,11 @@ std::string render_junit(const nlohmann::json& report) {
           message = "inconclusive: " + message;
         out << "      <" << element << " type=\"" << verdict << "\" message=\""
             << xml_escape(message) << "\">" << xml_escape(summary_text) << "</" << element << ">\n";
+      } else if (regressed_only(claim)) {
+        out << "      <failure type=\"regressed\" message=\""
+            << xml_escape("regressed against the baseline: " +
+                          string_field(claim["baseline"], "explanation"))
+            << "\">" << xml_escape(summary_text) << "</failure>\n";
       } else if (verdict == "xfail") {
         out << "      <skipped message=\"xfail: " << xml_escape(string_field(claim, "xfail_reason"))
             << "\"/>\n";

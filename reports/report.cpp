@@ -598,12 +598,29 @@ void print_claims_table(std::ostream& out, const nlohmann::json& report) {
         << range(sweep.value("requested_steps", nlohmann::json::array()))
         << "); stopped: " << sweep.value("stopped", std::string()) << "\n";
   }
+  // --baseline: every claim that regressed or improved, with both runs' numbers.
+  for (const auto& c : report["cases"])
+    for (const auto& claim : c["claims"]) {
+      const nlohmann::json baseline = claim.value("baseline", nlohmann::json::object());
+      const std::string status = baseline.value("status", std::string());
+      if (status != "regressed" && status != "improved") continue;
+      out << c.value("name", std::string()) << " / " << claim.value("id", std::string()) << ": "
+          << status << " against the baseline: " << baseline.value("explanation", std::string())
+          << "\n";
+    }
   // Cases --keep-going recorded as refused: what refused each (the run exits 2).
   const nlohmann::json refused = report.value("refused", nlohmann::json::array());
   for (const auto& entry : refused)
     out << entry.value("name", std::string())
         << ": refused: " << entry.value("message", std::string()) << "\n";
   out << "claims: " << summary_text(report["summary"]);
+  const nlohmann::json run = report.value("run", nlohmann::json::object());
+  if (run.contains("baseline") && run["baseline"].is_object()) {
+    const nlohmann::json& b = run["baseline"];
+    out << "; against the baseline: " << b.value("regressed", 0) << " regressed, "
+        << b.value("improved", 0) << " improved, " << b.value("unchanged", 0) << " unchanged, "
+        << b.value("not_compared", 0) << " not compared";
+  }
   if (!refused.empty())
     out << "; " << refused.size() << " case" << (refused.size() == 1 ? "" : "s")
         << " refused (exit 2)";
