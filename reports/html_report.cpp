@@ -886,7 +886,39 @@ std::string case_facts(const json& c) {
     out << (first ? " " : ", ") << escape(name) << " = " << value_html(value);
     first = false;
   }
-  out << "</dd><dt>initial</dt><dd>q = " << value_html(c["initial"].value("q", json::array()))
+  // A formula system's L (and its symmetry generator) as written in the case file.
+  const json file = c.value("case_file", json::object());
+  const json system = file.is_object() ? file.value("system", json::object()) : json::object();
+  const std::string lagrangian = !text_of(c, "lagrangian_formula").empty()
+                                     ? text_of(c, "lagrangian_formula")
+                                 : system.is_object() ? text_of(system, "lagrangian")
+                                                      : std::string();
+  if (!lagrangian.empty())
+    out << "<div data-fact=\"lagrangian\">L = <code>" << escape(lagrangian) << "</code></div>";
+  if (system.is_object() && system.contains("symmetry"))
+    out << "<div data-fact=\"symmetry\">symmetry generator &#958; = <code>"
+        << escape(system["symmetry"].dump()) << "</code></div>";
+  out << "</dd>";
+  // The discretizations as the case file states them: kind, rule, its parameters, L_d.
+  for (const auto& [key, title] : std::vector<std::pair<std::string, std::string>>{
+           {"discretization", "discretization"},
+           {"past_discretization", "past side"},
+           {"compare_discretization", "compared with"}}) {
+    if (!file.is_object() || !file.contains(key) || !file[key].is_object()) continue;
+    const json& d = file[key];
+    out << "<dt>" << title << "</dt><dd data-fact=\"" << key << "\">";
+    if (!text_of(d, "kind").empty()) out << "<code>" << escape(text_of(d, "kind")) << "</code>";
+    for (const auto& [field, value] : d.items()) {
+      if (field == "kind" || field == "L_d") continue;
+      out << " " << escape(field) << " = <code>"
+          << escape(value.is_string() ? value.get<std::string>() : value.dump()) << "</code>";
+    }
+    if (d.contains("L_d"))
+      out << "<div data-fact=\"L_d\">L<sub>d</sub> = <code>" << escape(text_of(d, "L_d"))
+          << "</code></div>";
+    out << "</dd>";
+  }
+  out << "<dt>initial</dt><dd>q = " << value_html(c["initial"].value("q", json::array()))
       << ", w = " << value_html(c["initial"].value("w", json::array())) << "</dd>";
   out << "<dt>sweep</dt><dd>T = " << value_html(c.value("T", json()))
       << ", N = " << value_html(c.value("steps", json::array())) << " (h = T/N)</dd>";

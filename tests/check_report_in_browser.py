@@ -115,6 +115,14 @@ def main(argv):
     badges = re.findall(r'<(\w+) class="verdict v-\w+" data-count="\w+"( href="#\w+")?', dom)
     if not badges or any(tag != "a" or not href for tag, href in badges):
         problems.append(f"verdict badges are not all links: {badges}")
+    # Each case's facts name its discretization, and a formula's L and L_d as written.
+    facts = attribute_values(dom, "data-fact")
+    cases_with = lambda test: sum(1 for case in report["cases"] if test(case.get("case_file", {})))
+    for fact, test in [("discretization", lambda f: isinstance(f.get("discretization"), dict)),
+                       ("L_d", lambda f: isinstance(f.get("discretization"), dict) and "L_d" in f["discretization"]),
+                       ("lagrangian", lambda f: "lagrangian" in f.get("system", {}))]:
+        if facts[fact] < cases_with(test):
+            problems.append(f"{facts[fact]} case facts show {fact}, expected at least {cases_with(test)}")
     # Self-contained: no scripts, stylesheets, images or fonts fetched from anywhere.
     for fetched in re.findall(r'<(?:script|link|img|iframe)\b[^>]*(?:src|href)="([^"]*)"', dom):
         problems.append(f"page loads {fetched}")
