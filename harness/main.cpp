@@ -567,9 +567,13 @@ int command_run(const std::vector<std::string>& args, const std::string& command
   for (std::size_t i = 0; i < selected.size(); ++i) {
     case_paths[selected[i].name] = fs::absolute(selected[i].file).lexically_normal().string();
     if (results[i].contains("refused")) {
+      // The message without the file it begins with (the entry names the file).
+      std::string message = results[i]["refused"].get<std::string>();
+      if (message.rfind(selected[i].file + ": ", 0) == 0)
+        message.erase(0, selected[i].file.size() + 2);
       nlohmann::json entry = {{"file", report_file_name(selected[i].file)},
                               {"name", selected[i].name},
-                              {"message", results[i]["refused"]}};
+                              {"message", message}};
       if (options.shard) entry["position"] = positions[i];
       refused.push_back(entry);
       continue;

@@ -249,8 +249,14 @@ OrderVerdict judge_order(const OrderFit& fit, double predicted, bool exact, doub
                             (std::isfinite(half_width) ? "±" + format_number(half_width, 2)
                                                        : std::string("no interval (2 points)")) +
                             " at " + format_number(100 * fit.confidence, 3) + "%";
+  // A note only where it changes what the reader should do: on a pass whose interval excludes
+  // the exact order while the finest pairwise orders have not yet settled on it (within tol/4,
+  // --refine's own stop rule); once they have, --refine would stop at once and the note would
+  // send the reader nowhere. A failure says why it fails without it.
+  bool settled = !fit.finest_orders.empty();
+  for (double p : fit.finest_orders) settled = settled && std::fabs(p - predicted) <= tolerance / 4;
   const std::string excluded_note =
-      exact && std::isfinite(fit.confidence_low) &&
+      exact && !settled && std::isfinite(fit.confidence_low) &&
               (predicted < fit.confidence_low || predicted > fit.confidence_high)
           ? "; note: the fit's " + format_number(100 * fit.confidence, 3) +
                 "% interval excludes the predicted " + format_number(predicted, 4) +
@@ -270,7 +276,6 @@ OrderVerdict judge_order(const OrderFit& fit, double predicted, bool exact, doub
                             (fit.finest_orders.size() > 1 ? " are" : " is") +
                             ": the fit over the asymptotic range disagrees: fails";
     }
-    verdict.explanation += excluded_note;
     return verdict;
   }
   // The point estimate and the finest orders agree. The interval must also exclude p − 1 (and

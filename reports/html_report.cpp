@@ -45,6 +45,8 @@ pre { background: var(--panel); padding: 8px 10px; overflow-x: auto; border-radi
 .note-cell { font-size: 12px; color: var(--muted); }
 .summary .verdict { font-size: 15px; padding: 4px 14px; }
 .attention li { margin: 5px 0; }
+ul.legend { list-style: none; padding: 0; margin: 2px 0 8px 72px; max-width: 560px; font-size: 13px; }
+ul.legend li { margin: 2px 0; overflow-wrap: anywhere; }
 table { border-collapse: collapse; }
 table.findings { width: 100%; font-size: 13px; }
 table.findings th, table.findings td { border-bottom: 1px solid var(--rule); padding: 5px 7px;
@@ -393,7 +395,9 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
   // Geometry: plot area, then the zero band below it, axis labels and legend.
   const double width = 640, left = 72, right = width - 24, top = 14, plot_bottom = 264;
   const double zero_band = any_zero ? 26 : 0, axis_bottom = plot_bottom + zero_band;
-  std::size_t legend_rows = all.size() + 2;
+  // The marker key in the SVG (two rows of fixed text); the series' legend, whose labels and fit
+  // notes can be long, is HTML below the plot, where it wraps instead of being clipped.
+  std::size_t legend_rows = 2;
   const double legend_top = axis_bottom + 50, height = legend_top + 18.0 * legend_rows + 6;
   auto px = [&](double x) { return left + (x - *x_low) / (*x_high - *x_low) * (right - left); };
   auto py = [&](double y) {
@@ -522,23 +526,24 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
     }
     svg << "</g>\n";
   }
-  // Legend: one row per series, then the key to the markers.
-  svg << "<g data-legend=\"1\">\n";
-  double row = legend_top;
+  // Legend: the key to the markers (the series are listed in HTML after the SVG).
+  std::ostringstream legend;
+  legend << "<ul class=\"legend\" data-legend-for=\"" << escape(key) << "\">";
+  bool any_predicted = false;
   for (const auto& s : all) {
-    svg << "<line x1=\"" << left << "\" y1=\"" << row - 4 << "\" x2=\"" << left + 22 << "\" y2=\""
-        << row - 4 << "\" stroke=\"" << s.color << "\" stroke-width=\"2\"/><circle cx=\""
-        << left + 11 << "\" cy=\"" << row - 4 << "\" r=\"4\" fill=\"" << s.color << "\"/>";
     std::string fit = s.order
                           ? "fitted order " + format_number(*s.order, 3)
                           : (s.fit_failure.empty() ? "no order fit" : "no fit: " + s.fit_failure);
     if (s.predicted)
       fit += (s.exact ? ", predicted " : ", predicted ≥ ") + format_number(*s.predicted, 3);
+    any_predicted = any_predicted || s.predicted.has_value();
     if (s.holds) fit += *s.holds ? " — holds" : " — fails";
-    svg << "<text x=\"" << left + 30 << "\" y=\"" << row << "\">" << escape(s.label)
-        << "<tspan fill=\"#5b6576\">  " << escape(fit) << "</tspan></text>\n";
-    row += 18;
+    legend << "<li><span class=\"swatch\" style=\"background:" << s.color << "\"></span>"
+           << escape(s.label) << " <span class=\"small\">" << escape(fit) << "</span></li>";
   }
+  legend << "</ul>";
+  svg << "<g data-legend=\"1\">\n";
+  double row = legend_top;
   svg << "<g fill=\"#5b6576\"><circle cx=\"" << left + 5 << "\" cy=\"" << row - 4
       << "\" r=\"4\" fill=\"#5b6576\"/><text x=\"" << left + 14 << "\" y=\"" << row
       << "\">used in the fit</text><circle cx=\"" << left + 125 << "\" cy=\"" << row - 4
@@ -551,11 +556,14 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
   svg << "<g fill=\"#5b6576\"><line x1=\"" << left << "\" y1=\"" << row - 4 << "\" x2=\""
       << left + 22 << "\" y2=\"" << row - 4
       << "\" stroke=\"#5b6576\" stroke-width=\"2\"/><text x=\"" << left + 30 << "\" y=\"" << row
-      << "\">least-squares fit over the used points</text><line x1=\"" << left + 300 << "\" y1=\""
-      << row - 4 << "\" x2=\"" << left + 322 << "\" y2=\"" << row - 4
-      << "\" stroke=\"#5b6576\" stroke-dasharray=\"6 4\"/><text x=\"" << left + 330 << "\" y=\""
-      << row << "\">predicted slope</text></g>\n";
-  svg << "</g>\n</svg>";
+      << "\">least-squares fit over the used points</text>";
+  // A predicted slope is drawn (and keyed) only for a series that predicts an order.
+  if (any_predicted)
+    svg << "<line x1=\"" << left + 300 << "\" y1=\"" << row - 4 << "\" x2=\"" << left + 322
+        << "\" y2=\"" << row - 4 << "\" stroke=\"#5b6576\" stroke-dasharray=\"6 4\"/><text x=\""
+        << left + 330 << "\" y=\"" << row << "\">predicted slope</text>";
+  svg << "</g>\n";
+  svg << "</g>\n</svg>" << legend.str();
   return svg.str();
 }
 

@@ -115,6 +115,19 @@ def main(argv):
     badges = re.findall(r'<(\w+) class="verdict v-\w+" data-count="\w+"( href="#\w+")?', dom)
     if not badges or any(tag != "a" or not href for tag, href in badges):
         problems.append(f"verdict badges are not all links: {badges}")
+    # No text in a plot runs past its right edge: at 12 px a character of this font is at most
+    # about 7 px wide (the legend of series, which can be long, is HTML below the plot).
+    for match in re.finditer(r'<svg class="plot[^"]*"[^>]*width="([0-9.]+)"[^>]*data-claim-(?:plot|map)="([^"]*)"[^>]*>(.*?)</svg>', dom, re.S):
+        width = float(match.group(1))
+        for text in re.finditer(r'<text x="([0-9.]+)"[^>]*>(.*?)</text>', match.group(3), re.S):
+            content = html.unescape(re.sub(r"<[^>]+>", "", text.group(2)))
+            anchor_end = 'text-anchor="end"' in text.group(0) or 'text-anchor="middle"' in text.group(0)
+            if not anchor_end and float(text.group(1)) + 7 * len(content) > width:
+                problems.append(f"{html.unescape(match.group(2))}: plot text may be clipped at the right edge: {content!r}")
+    legends = attribute_values(dom, "data-legend-for")
+    for key in expected:
+        if legends[key] != 1:
+            problems.append(f"{key}: {legends[key]} series legends below the plot, expected 1")
     # Each case's facts name its discretization, and a formula's L and L_d as written.
     facts = attribute_values(dom, "data-fact")
     cases_with = lambda test: sum(1 for case in report["cases"] if test(case.get("case_file", {})))
