@@ -30,4 +30,10 @@ std::string render_claim_plot(const nlohmann::json& claim, const std::string& ke
 // axis. "" when the claim has no such evidence.
 std::string render_speed_map(const nlohmann::json& claim, const std::string& key);
 
+// |E_k − E_0| against t (log error, linear t) for each h, from the claim's evidence
+// "energy_error_against_t" ([{"h", "N", "t": [...], "error": [...]}], energy-behaviour and
+// modified-energy: per h the largest error in each of ~200 runs of steps), as an
+// <svg data-claim-time-plot="CASE/CLAIM"> with an HTML legend; "" without such evidence.
+std::string render_time_plot(const nlohmann::json& claim, const std::string& key);
+
 }  // namespace vivv

@@ -128,6 +128,24 @@ def main(argv):
     for key in expected:
         if legends[key] != 1:
             problems.append(f"{key}: {legends[key]} series legends below the plot, expected 1")
+    # A plot against t for every claim whose evidence has energy_error_against_t (energy-behaviour,
+    # modified-energy), with a line per h; none for the others.
+    timed = [f"{case['name']}/{claim['id']}" for case in report["cases"] for claim in case["claims"]
+             if isinstance(claim.get("evidence"), dict) and claim["evidence"].get("energy_error_against_t")]
+    time_plots = attribute_values(dom, "data-claim-time-plot")
+    for key in timed:
+        if time_plots[key] != 1:
+            problems.append(f"{key}: {time_plots[key]} plots against t, expected 1")
+    for key in set(time_plots) - set(timed):
+        problems.append(f"{key}: a plot against t without energy_error_against_t")
+    for match in re.finditer(r'<svg class="plot time"[^>]*data-claim-time-plot="([^"]*)"[^>]*>(.*?)</svg>', dom, re.S):
+        if "data-time-line=" not in match.group(2):
+            problems.append(f"{html.unescape(match.group(1))}: plot against t without a line")
+    energy_claims = [f"{case['name']}/{claim['id']}" for case in report["cases"] for claim in case["claims"]
+                     if claim["id"] == "energy-behaviour" and claim["verdict"] != "error"]
+    for key in energy_claims:
+        if key not in timed:
+            problems.append(f"{key}: energy-behaviour without energy_error_against_t evidence")
     # Each case's facts name its discretization, and a formula's L and L_d as written.
     facts = attribute_values(dom, "data-fact")
     cases_with = lambda test: sum(1 for case in report["cases"] if test(case.get("case_file", {})))
