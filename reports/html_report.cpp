@@ -251,6 +251,9 @@ struct PlotSeries {
   bool exact = false;
   std::optional<bool> holds;
   std::string fit_failure;
+  // A value judged against its own tolerance at each h (an identity, a conserved quantity): no
+  // order is fitted or drawn for it.
+  bool per_step = false;
 };
 
 PlotSeries plot_series(const json& series, const std::string& color) {
@@ -259,7 +262,8 @@ PlotSeries plot_series(const json& series, const std::string& color) {
   out.color = color;
   std::set<int> used;
   std::map<int, std::string> dropped;
-  bool has_fit = series.contains("fit_points") && series["fit_points"].is_object();
+  out.per_step = text_of(series, "rule") == "per-step-tolerance";
+  bool has_fit = !out.per_step && series.contains("fit_points") && series["fit_points"].is_object();
   if (has_fit) {
     for (const auto& i : series["fit_points"].value("used", json::array()))
       used.insert(i.get<int>());
@@ -291,7 +295,7 @@ PlotSeries plot_series(const json& series, const std::string& color) {
   }
   const json order = series.value("observed_order", json());
   const json constant = series.value("error_constant_log", json());
-  if (order.is_number() && constant.is_number()) {
+  if (!out.per_step && order.is_number() && constant.is_number()) {
     out.order = order.get<double>();
     out.log10_constant = constant.get<double>() / std::log(10.0);
   }
@@ -350,8 +354,26 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
   for (std::size_t i = 0; i < series_list.size(); ++i)
     all.push_back(plot_series(series_list[i], series_colors[i % series_colors.size()]));
 
+  // An identity's or conserved quantity's tolerance at each h (evidence per_step), drawn as the
+  // line the values must stay below.
+  std::vector<std::pair<double, double>> tolerance_line;
+  const bool any_per_step =
+      std::any_of(all.begin(), all.end(), [](const PlotSeries& s) { return s.per_step; });
+  const json evidence = claim.value("evidence", json::object());
+  if (any_per_step && evidence.is_object())
+    for (const auto& row : evidence.value("per_step", json::array())) {
+      if (!row.is_object()) continue;
+      const auto x = log10_decimal(text_of(row, "h")), y = log10_decimal(text_of(row, "tolerance"));
+      if (x && y) tolerance_line.emplace_back(*x, *y);
+    }
+  std::sort(tolerance_line.begin(), tolerance_line.end());
+
   // Ranges in log10.
   std::optional<double> x_low, x_high, y_low, y_high;
+  for (const auto& [x, y] : tolerance_line) {
+    y_low = std::min(y_low.value_or(y), y);
+    y_high = std::max(y_high.value_or(y), y);
+  }
   bool any_zero = false;
   for (const auto& s : all)
     for (const auto& p : s.points) {
@@ -457,6 +479,15 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
   }
   // Fitted lines and predicted slopes, clipped to the plot area.
   svg << "<g clip-path=\"url(#" << clip << ")\">\n";
+  if (!tolerance_line.empty()) {
+    std::string path;
+    for (const auto& [x, y] : tolerance_line)
+      path += (path.empty() ? "M" : " L") + fixed(px(x)) + " " + fixed(py(y));
+    svg << "<path data-tolerance-line=\"1\" d=\"" << path
+        << "\" fill=\"none\" stroke=\"#a40e26\" stroke-width=\"1.5\" stroke-dasharray=\"4 "
+           "3\"><title>the tolerance "
+           "at each h: a value above it fails</title></path>\n";
+  }
   for (const auto& s : all) {
     if (!s.order || !s.log10_constant) continue;
     double low = 1e300, high = -1e300, sum = 0;
@@ -531,7 +562,8 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
   legend << "<ul class=\"legend\" data-legend-for=\"" << escape(key) << "\">";
   bool any_predicted = false;
   for (const auto& s : all) {
-    std::string fit = s.order
+    std::string fit = s.per_step ? std::string("judged against its tolerance at each h (no order)")
+                      : s.order
                           ? "fitted order " + format_number(*s.order, 3)
                           : (s.fit_failure.empty() ? "no order fit" : "no fit: " + s.fit_failure);
     if (s.predicted)
@@ -541,22 +573,30 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
     legend << "<li><span class=\"swatch\" style=\"background:" << s.color << "\"></span>"
            << escape(s.label) << " <span class=\"small\">" << escape(fit) << "</span></li>";
   }
+  if (!tolerance_line.empty())
+    legend << "<li><span class=\"swatch\" style=\"background:#a40e26; border-radius:0; "
+              "height:3px\"></span>"
+              "the tolerance at each h (dashed): a value above it fails</li>";
   legend << "</ul>";
   svg << "<g data-legend=\"1\">\n";
   double row = legend_top;
+  const bool any_fit =
+      std::any_of(all.begin(), all.end(), [](const PlotSeries& s) { return s.order.has_value(); });
+  const char* filled_key = any_fit ? "used in the fit" : "measured";
   svg << "<g fill=\"#5b6576\"><circle cx=\"" << left + 5 << "\" cy=\"" << row - 4
-      << "\" r=\"4\" fill=\"#5b6576\"/><text x=\"" << left + 14 << "\" y=\"" << row
-      << "\">used in the fit</text><circle cx=\"" << left + 125 << "\" cy=\"" << row - 4
+      << "\" r=\"4\" fill=\"#5b6576\"/><text x=\"" << left + 14 << "\" y=\"" << row << "\">"
+      << filled_key << "</text><circle cx=\"" << left + 125 << "\" cy=\"" << row - 4
       << "\" r=\"4\" fill=\"#fff\" stroke=\"#5b6576\" stroke-width=\"1.4\"/><text x=\""
       << left + 134 << "\" y=\"" << row << "\">dropped (hover: reason)</text><path d=\"M"
       << left + 300 << " " << row - 8 << " L" << left + 310 << " " << row - 8 << " L" << left + 305
       << " " << row + 1 << " Z\" fill=\"#fff\" stroke=\"#5b6576\" stroke-width=\"1.4\"/><text x=\""
       << left + 316 << "\" y=\"" << row << "\">error = 0 (at the plot floor)</text></g>\n";
   row += 18;
-  svg << "<g fill=\"#5b6576\"><line x1=\"" << left << "\" y1=\"" << row - 4 << "\" x2=\""
-      << left + 22 << "\" y2=\"" << row - 4
-      << "\" stroke=\"#5b6576\" stroke-width=\"2\"/><text x=\"" << left + 30 << "\" y=\"" << row
-      << "\">least-squares fit over the used points</text>";
+  svg << "<g fill=\"#5b6576\">";
+  if (any_fit)
+    svg << "<line x1=\"" << left << "\" y1=\"" << row - 4 << "\" x2=\"" << left + 22 << "\" y2=\""
+        << row - 4 << "\" stroke=\"#5b6576\" stroke-width=\"2\"/><text x=\"" << left + 30
+        << "\" y=\"" << row << "\">least-squares fit over the used points</text>";
   // A predicted slope is drawn (and keyed) only for a series that predicts an order.
   if (any_predicted)
     svg << "<line x1=\"" << left + 300 << "\" y1=\"" << row - 4 << "\" x2=\"" << left + 322

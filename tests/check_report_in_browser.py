@@ -146,6 +146,21 @@ def main(argv):
     for key in energy_claims:
         if key not in timed:
             problems.append(f"{key}: energy-behaviour without energy_error_against_t evidence")
+    # An identity or conserved quantity judged against its tolerance at each h is drawn with that
+    # tolerance and without a fitted order.
+    for case in report["cases"]:
+        for claim in case["claims"]:
+            if not any(s.get("rule") == "per-step-tolerance" for s in claim.get("series", [])):
+                continue
+            key = f"{case['name']}/{claim['id']}"
+            match = re.search(r'<svg class="plot"[^>]*data-claim-plot="' + re.escape(html.escape(key, quote=True))
+                              + r'"[^>]*>(.*?)</svg>', dom, re.S)
+            if not match:
+                continue
+            if claim.get("evidence", {}).get("per_step") and "data-tolerance-line=" not in match.group(1):
+                problems.append(f"{key}: judged against a tolerance at each h, but the plot has no tolerance line")
+            if len(claim["series"]) == 1 and "data-fit=" in match.group(1):
+                problems.append(f"{key}: an identity plotted with a fitted order")
     # Each case's facts name its discretization, and a formula's L and L_d as written.
     facts = attribute_values(dom, "data-fact")
     cases_with = lambda test: sum(1 for case in report["cases"] if test(case.get("case_file", {})))
