@@ -267,11 +267,12 @@ class Reader {
       out.push_back(decimal_value(value[i], field(key) + "[" + std::to_string(i) + "]"));
     return out;
   }
-  int integer(const std::string& key, int low, int high) {
+  // An integer in [low, high]; `why` says why the range is what it is (shown when refused).
+  int integer(const std::string& key, int low, int high, const std::string& why) {
     const auto& value = get(key);
     if (!value.is_number_integer() || value.get<long long>() < low || value.get<long long>() > high)
-      fail(key, "expected an integer in [" + std::to_string(low) + ", " + std::to_string(high) + "], got " +
-                    echo(value));
+      fail(key, "expected an integer in [" + std::to_string(low) + ", " + std::to_string(high) +
+                    "], got " + echo(value) + ": " + why);
     return value.get<int>();
   }
   std::string string(const std::string& key) {
@@ -395,7 +396,9 @@ DiscretizationSpec read_discretization(Reader reader, int dimension,
   if (spec.formalism == "tq") {
     TQSpec tq;
     tq.psi = reader.one_of("psi", {"linear", "taylor", "exact"});
-    if (tq.psi == "taylor") tq.r = reader.integer("r", 1, 8);
+    if (tq.psi == "taylor")
+      tq.r =
+          reader.integer("r", 1, 8, "the degree of the Taylor psi; vivv expands it up to degree 8");
     if (tq.psi != "taylor" && reader.has("r"))
       reader.fail("r", "a degree r is taken only by psi \"taylor\", not \"" + tq.psi + "\"");
     tq.theta = reader.fraction("theta");
@@ -403,7 +406,9 @@ DiscretizationSpec read_discretization(Reader reader, int dimension,
     if (tq.lagrangian == "exact" && tq.psi != "exact")
       reader.fail("lagrangian", "\"exact\" is the action along the exact psi: needs psi \"exact\", not \"" +
                                     tq.psi + "\"");
-    if (tq.lagrangian == "quadrature") tq.nodes = reader.integer("nodes", 1, 64);
+    if (tq.lagrangian == "quadrature")
+      tq.nodes = reader.integer("nodes", 1, 64,
+                                "the Gauss nodes of the quadrature of L along psi; at most 64");
     if (tq.lagrangian == "pullback") {
       tq.qxq = std::make_shared<DiscretizationSpec>(
           read_discretization(reader.object("qxq"), dimension, parameters, false));
@@ -431,12 +436,17 @@ DiscretizationSpec read_discretization(Reader reader, int dimension,
     if (rule == QxQRule::alpha) spec.parameter = reader.decimal("alpha");
     if (rule == QxQRule::weighted) spec.parameter = reader.decimal("beta");
     if (rule == QxQRule::galerkin) {
-      spec.galerkin_degree = reader.integer("degree", 1, 8);
+      spec.galerkin_degree = reader.integer(
+          "degree", 1, 8, "the degree of the Galerkin curve; vivv builds curves up to degree 8");
       spec.galerkin_quadrature = reader.one_of("quadrature", {"gauss", "lobatto"});
       // Fewer nodes than the degree leave the interior values too loosely tied to L (degree 3 with 2
       // Gauss nodes measures order 2, not min(2s, 2m) = 4): vivv has no prediction there.
-      spec.galerkin_nodes =
-          reader.integer("nodes", std::max(spec.galerkin_degree, spec.galerkin_quadrature == "lobatto" ? 2 : 1), 16);
+      spec.galerkin_nodes = reader.integer(
+          "nodes", std::max(spec.galerkin_degree, spec.galerkin_quadrature == "lobatto" ? 2 : 1),
+          16,
+          "fewer nodes than the degree leave the curve's interior values too loosely tied to L "
+          "(degree 3 with 2 Gauss nodes measures order 2, not 4), so vivv has no prediction there "
+          "(and Lobatto needs 2 nodes, its end points); at most 16 nodes");
     }
     if (rule == QxQRule::expression) {
       spec.expression_tree = read_formula(reader, "L_d", spec.expression);
@@ -445,12 +455,15 @@ DiscretizationSpec read_discretization(Reader reader, int dimension,
       } catch (const FormulaError& error) {
         reader.fail("L_d", describe_formula_error(spec.expression, error));
       }
-      spec.declared_order = reader.integer("order", 1, 64);
+      spec.declared_order =
+          reader.integer("order", 1, 64, "the order the rule declares, which its claims check");
     }
   }
   if (reader.has("twin")) {
     Reader twin = reader.object("twin");
-    spec.twin = TwinSpec{twin.decimals("a", dimension), twin.integer("power", 1, 16)};
+    spec.twin = TwinSpec{
+        twin.decimals("a", dimension),
+        twin.integer("power", 1, 16, "the power s of h in the twin term h^s·a·w; at most 16")};
     twin.finish();
   }
   reader.finish();
@@ -680,7 +693,11 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
                              steps.dump());
   for (const auto& n : steps) {
     if (!n.is_number_integer() || n.get<long long>() < 2 || n.get<long long>() > 1000000)
-      reader.fail("steps", "expected integers N in [2, 1000000], got " + n.dump());
+      reader.fail(
+          "steps",
+          "expected integers N in [2, 1000000] (N = 1 solves no DEL step; a run keeps every q_k in "
+          "memory, so a million is the bound), got " +
+              n.dump());
     if (!spec.steps.empty() && n.get<int>() <= spec.steps.back())
       reader.fail("steps", "expected strictly increasing step counts, got " + steps.dump());
     spec.steps.push_back(n.get<int>());
@@ -694,7 +711,11 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   if (reader.has("digits")) {
     if (spec.scalar != "mpfr")
       reader.fail("digits", "sets the MPFR working precision, and this case runs in \"" + spec.scalar + "\"");
-    spec.digits = reader.integer("digits", 20, maximum_digits);
+    spec.digits = reader.integer(
+        "digits", 20, maximum_digits,
+        "MPFR's working precision in decimal digits: below 20 it is no more precise than "
+        "long double; at 1000 the paper example's midpoint case takes 3 min and at 2000 "
+        "its reference flow alone took 11 min");
   }
   spec.discretization = read_discretization(reader.object("discretization"), spec.dimension, spec.parameters);
   if (reader.has("past_discretization"))
@@ -815,7 +836,11 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   if (reader.has("expect")) {
     Reader expect = reader.object("expect");
     for (const auto& id : spec.claims)
-      if (expect.has(id)) spec.expect[id] = expect.integer(id, 1, 64);  // order <= 0 predicts no convergence
+      if (expect.has(id))  // order <= 0 predicts no convergence
+        spec.expect[id] =
+            expect.integer(id, 1, 64,
+                           "the exact order the case expects; an order <= 0 predicts no "
+                           "convergence, which no claim checks");
     expect.finish();  // an expectation for a claim the case does not check is an error
   }
   if (reader.has("xfail")) {
