@@ -123,7 +123,8 @@ std::array<S, System::dimension> force_at(const System& system, const std::array
 // more than 1000 ε relative to the size of M, or not finite.
 template <class T, int n>
 struct SeparabilityDefect {
-  std::string quantity;  // "d2L/dw dq" or "d2L/dw2 - d2L/dw2(first sample)"
+  std::string quantity;  // the entry, "d2L/dw_2 dq_1", or "the change of d2L/dw_1 dw_1 from the
+                         // initial state"
   T size;                // its largest entry
   State<T, n> at;
 };
@@ -138,11 +139,36 @@ std::optional<SeparabilityDefect<typename System::Scalar, System::dimension>> se
   const T allowed = 1000 * epsilon<T>() * max(T(1), T(first.d2L_dw2.cwiseAbs().maxCoeff()));
   for (const auto& x : samples) {
     const auto d = lagrangian_derivatives(system, x.q, x.w);
+    // The entry named by its components (1-based): d2L/dw_2 dq_1, not "the first components".
+    const auto entry = [](const Matrix<T, n, n>& m, const std::string& row,
+                          const std::string& column, std::string& name) {
+      int i = 0, j = 0;
+      T largest = -1;
+      for (int r = 0; r < n; ++r)
+        for (int c = 0; c < n; ++c) {
+          using std::abs, std::isnan;
+          const T value = isnan(m(r, c)) ? std::numeric_limits<T>::infinity() : T(abs(m(r, c)));
+          if (value > largest) largest = value, i = r, j = c;
+        }
+      name = n == 1
+                 ? row + " " + column
+                 : row + "_" + std::to_string(i + 1) + " " + column + "_" + std::to_string(j + 1);
+      return m(i, j);
+    };
+    std::string name;
     const T mixed = d.d2L_dwdq.cwiseAbs().maxCoeff();
-    const T varying = Matrix<T, n, n>(d.d2L_dw2 - first.d2L_dw2).cwiseAbs().maxCoeff();
+    const Matrix<T, n, n> change = d.d2L_dw2 - first.d2L_dw2;
+    const T varying = change.cwiseAbs().maxCoeff();
     // Written so that a NaN (a sample outside L's domain) is a defect too, never a pass.
-    if (!(mixed <= allowed)) return SeparabilityDefect<T, n>{"d2L/dw dq", mixed, x};
-    if (!(varying <= allowed)) return SeparabilityDefect<T, n>{"d2L/dw2 - d2L/dw2(first sample)", varying, x};
+    if (!(mixed <= allowed)) {
+      const T value = entry(d.d2L_dwdq, "d2L/dw", "dq", name);
+      return SeparabilityDefect<T, n>{name, value, x};
+    }
+    if (!(varying <= allowed)) {
+      const T value = entry(change, "d2L/dw", "dw", name);
+      return SeparabilityDefect<T, n>{"the change of " + name + " from the initial state", value,
+                                      x};
+    }
   }
   return std::nullopt;
 }

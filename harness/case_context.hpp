@@ -283,17 +283,34 @@ struct CaseContext {
     euler_lagrange_acceleration(system, initial.q, initial.w);
   }
 
+  // A state of the run for a message: the initial state as the case file writes it, another with
+  // 6 significant digits.
+  std::string where_sampled(const State<T, n>& x) const {
+    if (x.q == initial.q && x.w == initial.w) {
+      std::string q, w;
+      for (std::size_t i = 0; i < spec.q.size(); ++i) q += (i ? ", " : "") + spec.q[i];
+      for (std::size_t i = 0; i < spec.w.size(); ++i) w += (i ? ", " : "") + spec.w[i];
+      return "the initial state q = (" + q + "), w = (" + w + ")";
+    }
+    return "q = " + to_decimal_tuple<T, n>(x.q, 6) + ", w = " + to_decimal_tuple<T, n>(x.w, 6) +
+           (x.q == final_state.q && x.w == final_state.w
+                ? " (the reference's state at T)"
+                : " (a mixture of the initial state and the reference's at T)");
+  }
+
   // The odeint stepper of the case on the system's separable form, after checking that L is
   // ½ wᵀ M w − V(q) with M constant at the initial and final states and their two mixtures.
   std::shared_ptr<const OneStepMap<T, n>> make_map() const {
     std::vector<State<T, n>> samples = {initial, final_state, {initial.q, final_state.w}, {final_state.q, initial.w}};
     if (auto defect = separability_defect(system, samples))
-      throw CaseError(spec.file, spec.discretization.kind == "odeint" ? "discretization.stepper" : "discretization.name",
-                      spec.discretization.kind + " " + spec.discretization.stepper +
-                          " steps a separable system, L = 1/2 w^T M w - V(q) with M constant, and this "
-                          "Lagrangian is not one: " + defect->quantity + " = " + format_scalar(defect->size) +
-                          " at q = " + to_decimal<T>(defect->at.q[0]) + ", w = " + to_decimal<T>(defect->at.w[0]) +
-                          (n > 1 ? " (first components)" : ""));
+      throw CaseError(
+          spec.file,
+          spec.discretization.kind == "odeint" ? "discretization.stepper" : "discretization.name",
+          spec.discretization.kind + " " + spec.discretization.stepper +
+              " steps a separable system, L = 1/2 w^T M w - V(q) with M constant, and this "
+              "Lagrangian is not one: " +
+              defect->quantity + " = " + format_scalar(defect->size, 3) + " at " +
+              where_sampled(defect->at));
     if (spec.discretization.kind == "odeint")
       return make_odeint_map<T, n>(spec.discretization.stepper, separable_form(system, initial));
     const auto& factories = map_factories<T, n>();
