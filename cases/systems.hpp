@@ -42,6 +42,7 @@ struct PaperExample {
   }
   template <class S>
   S lagrangian(const Point<S, 1>& q, const Point<S, 1>& w) const {
+    count_lagrangian_evaluation();
     return g(q[0]) * w[0] * w[0] / 2 - V(q[0]);
   }
 };
@@ -58,6 +59,7 @@ struct HarmonicOscillator {
 
   template <class S>
   S lagrangian(const Point<S, 1>& q, const Point<S, 1>& w) const {
+    count_lagrangian_evaluation();
     return w[0] * w[0] / 2 - omega * omega * q[0] * q[0] / 2;
   }
 };
@@ -74,6 +76,7 @@ struct Pendulum {
 
   template <class S>
   S lagrangian(const Point<S, 1>& q, const Point<S, 1>& w) const {
+    count_lagrangian_evaluation();
     using std::cos;
     return w[0] * w[0] / 2 - k * (1 - cos(q[0]));
   }
@@ -91,6 +94,7 @@ struct RelativisticParticle {
 
   template <class S>
   S lagrangian(const Point<S, 1>& q, const Point<S, 1>& w) const {
+    count_lagrangian_evaluation();
     using std::sqrt;
     return -mass * sqrt(1 - w[0] * w[0]) - k * q[0] * q[0] / 2;
   }
@@ -109,6 +113,7 @@ struct ChargedParticle {
 
   template <class S>
   S lagrangian(const Point<S, 2>& q, const Point<S, 2>& w) const {
+    count_lagrangian_evaluation();
     return (w[0] * w[0] + w[1] * w[1]) / 2 + B * (q[0] * w[1] - q[1] * w[0]) / 2 -
            k * (q[0] * q[0] + q[1] * q[1]) / 2;
   }
@@ -132,6 +137,7 @@ struct Kepler {
 
   template <class S>
   S lagrangian(const Point<S, 2>& q, const Point<S, 2>& w) const {
+    count_lagrangian_evaluation();
     using std::sqrt;
     return (w[0] * w[0] + w[1] * w[1]) / 2 + mu / sqrt(q[0] * q[0] + q[1] * q[1]);
   }
@@ -155,6 +161,7 @@ struct HenonHeiles {
 
   template <class S>
   S lagrangian(const Point<S, 2>& q, const Point<S, 2>& w) const {
+    count_lagrangian_evaluation();
     const S& x = q[0];
     const S& y = q[1];
     return (w[0] * w[0] + w[1] * w[1]) / 2 - (x * x + y * y) / 2 - lambda * (x * x * y - y * y * y / 3);
@@ -178,6 +185,7 @@ struct DoublePendulum {
 
   template <class S>
   S lagrangian(const Point<S, 2>& q, const Point<S, 2>& w) const {
+    count_lagrangian_evaluation();
     using std::cos;
     const T m = m1 + m2;
     return m * l1 * l1 * w[0] * w[0] / 2 + m2 * l2 * l2 * w[1] * w[1] / 2 +

@@ -46,6 +46,7 @@ struct FormulaSystem {
   // L(q, w): the recorded program run in S.
   template <class S>
   S lagrangian(const Point<S, n>& q, const Point<S, n>& w) const {
+    count_lagrangian_evaluation();
     std::array<S, 2 * n> x;
     for (int i = 0; i < n; ++i) x[i] = q[i], x[n + i] = w[i];
     return program->evaluate_first(x.data());

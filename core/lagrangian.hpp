@@ -15,6 +15,12 @@
 
 namespace vivv {
 
+// The evaluations of L in this thread, counted by every system vivv runs (the catalogue's and
+// formula systems): a run's cost that does not depend on the machine (its work-precision
+// diagram). Counting is one increment per evaluation, in any scalar or jet.
+inline thread_local long lagrangian_evaluations = 0;
+inline void count_lagrangian_evaluation() { ++lagrangian_evaluations; }
+
 template <class S, int n>
 using Point = std::array<S, n>;
 

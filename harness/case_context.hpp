@@ -216,6 +216,20 @@ ReferenceCheck check_reference(const Reference& reference, const State<T, n>& in
           estimate <= allowed};
 }
 
+// What a run costs from construction to cost(): the evaluations of L this thread made (every
+// system counts them, core/lagrangian.hpp) and the wall time.
+class CostMeter {
+ public:
+  RunCost cost() const {
+    return {lagrangian_evaluations - evaluations_,
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count()};
+  }
+
+ private:
+  long evaluations_ = lagrangian_evaluations;
+  std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
+};
+
 // An order claim's prediction: `order`, exact when the case declared it (then
 // never below the theorem's own bound).
 struct OrderPrediction {
@@ -247,6 +261,8 @@ struct CaseContext {
   // energy-behaviour, symplecticity, discrete-noether, modified-energy): the DEL trajectories of
   // `scheme` and the one-step map's states (harness/claims/global_order.hpp, run_sweep).
   mutable std::map<int, std::shared_ptr<const DelTrajectory<T, n>>> del_runs;
+  // What each N's run (the case's DEL, map or TQ evolution) cost: L evaluations and seconds.
+  mutable std::map<int, RunCost> run_costs;
   mutable std::map<int, std::shared_ptr<const std::vector<State<T, n>>>> map_runs;
 
   CaseContext(const CaseSpec& spec_, System system_, std::function<void(const std::string&)> progress_)

@@ -513,7 +513,7 @@ void check_output_directory(const std::string& out) {
   if (error) throw BadInput("--out: cannot create '" + out + "': " + error.message());
   // The three files are replaced by renames at the end: one that is a directory (or a device, a
   // FIFO) would fail there, after every case computed and with the others already replaced.
-  for (const char* name : {"report.json", "report.html", "junit.xml"}) {
+  for (const char* name : {"report.json", "report.html", "junit.xml", "report.csv"}) {
     const fs::path file = fs::path(out) / name;
     const fs::file_status status = fs::symlink_status(file, error);
     if (fs::exists(status) && !fs::is_regular_file(status) && !fs::is_symlink(status))

@@ -136,6 +136,7 @@ void run_on_system(const System& system, CaseSpec& spec, CaseResult& result, boo
         throw explained;
       }
     }
+    result.run_costs = context.run_costs;
     if (!refine) break;
     // --refine: halve h (double N) until every order-fitted series settles, within the budget.
     auto unsettled = unsettled_series(result.claims, context.order_tolerance);

@@ -36,4 +36,9 @@ std::string render_speed_map(const nlohmann::json& claim, const std::string& key
 // <svg data-claim-time-plot="CASE/CLAIM"> with an HTML legend; "" without such evidence.
 std::string render_time_plot(const nlohmann::json& claim, const std::string& key);
 
+// Work-precision diagrams: for each group of cases with one system, parameters, initial state and
+// T (two or more with a global-order claim and counted costs), |q_N − q(T)| against the
+// evaluations of L of each run, one line per case; "" when there is no such group.
+std::string render_work_precision(const nlohmann::json& cases);
+
 }  // namespace vivv

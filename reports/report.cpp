@@ -68,6 +68,20 @@ nlohmann::json series_json(const Series& series) {
 
 }  // namespace
 
+// Each run's L evaluations, by N (deterministic: in the case); its wall time goes to the run block.
+nlohmann::json run_cost(const CaseResult& result) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& [N, cost] : result.run_costs)
+    out.push_back({{"N", N}, {"L_evaluations", cost.lagrangian_evaluations}});
+  return out;
+}
+nlohmann::json run_seconds(const CaseResult& result) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& [N, cost] : result.run_costs)
+    out.push_back({{"N", N}, {"seconds", cost.seconds}});
+  return out;
+}
+
 nlohmann::json case_json(const CaseResult& result) {
   const CaseSpec& spec = result.spec;
   nlohmann::json parameters = nlohmann::json::object();
@@ -144,6 +158,8 @@ nlohmann::json case_json(const CaseResult& result) {
               {"del_allowed", result.derivative_check.del_allowed},
               {"holds", result.derivative_check.holds}}}}},
           {"seconds", result.seconds},
+          {"run_seconds", run_seconds(result)},
+          {"cost", run_cost(result)},
           {"claims", claims}};
 }
 
@@ -203,6 +219,11 @@ nlohmann::json assemble_report(std::vector<nlohmann::json> cases, const RunInfo&
     if (c.contains("seconds")) {
       run_json["case_seconds"][c["name"].get<std::string>()] = c["seconds"];
       c.erase("seconds");
+    }
+    if (c.contains("run_seconds")) {
+      if (!c["run_seconds"].empty())
+        run_json["run_seconds"][c["name"].get<std::string>()] = c["run_seconds"];
+      c.erase("run_seconds");
     }
   }
   return {{"schema", report_schema},
@@ -324,6 +345,8 @@ nlohmann::json merge_reports(const std::vector<std::pair<std::string, nlohmann::
     const nlohmann::json case_seconds = source_run.value("case_seconds", nlohmann::json::object());
     for (const auto& [name, seconds] : case_seconds.items())
       run_json["case_seconds"][name] = seconds;
+    const nlohmann::json run_seconds = source_run.value("run_seconds", nlohmann::json::object());
+    for (const auto& [name, runs] : run_seconds.items()) run_json["run_seconds"][name] = runs;
     const nlohmann::json case_paths = source_run.value("case_paths", nlohmann::json::object());
     for (const auto& [name, path] : case_paths.items()) run_json["case_paths"][name] = path;
     run_json["merged_from"].push_back({{"report", file}, {"run", source_run}});
@@ -473,13 +496,59 @@ std::string write_temporary(const std::string& path, const std::string& content)
 
 }  // namespace
 
+namespace {
+
+// A CSV field: quoted when it holds a comma, a quote or a line break (RFC 4180).
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+}  // namespace
+
+std::string render_csv(const nlohmann::json& report) {
+  std::ostringstream out;
+  out << "case,claim,series,h,N,error,floor,L_evaluations,seconds\n";
+  const nlohmann::json run_seconds =
+      report.value("run", nlohmann::json::object()).value("run_seconds", nlohmann::json::object());
+  for (const auto& c : report.value("cases", nlohmann::json::array())) {
+    const std::string name = c.value("name", std::string());
+    const std::vector<int> steps = c.value("sweep", nlohmann::json::object())
+                                       .value("steps_used", c.value("steps", std::vector<int>{}));
+    std::map<int, std::string> evaluations, seconds;
+    for (const auto& row : c.value("cost", nlohmann::json::array()))
+      evaluations[row.value("N", 0)] = row.value("L_evaluations", nlohmann::json()).dump();
+    for (const auto& row : run_seconds.value(name, nlohmann::json::array()))
+      seconds[row.value("N", 0)] = row.value("seconds", nlohmann::json()).dump();
+    for (const auto& claim : c.value("claims", nlohmann::json::array()))
+      for (const auto& s : claim.value("series", nlohmann::json::array())) {
+        const nlohmann::json h = s.value("h", nlohmann::json::array()),
+                             error = s.value("error", nlohmann::json::array());
+        for (std::size_t i = 0; i < h.size() && i < error.size(); ++i) {
+          // A series has one point per step count of the sweep, in order (per-step claims too).
+          const int N = h.size() == steps.size() ? steps[i] : 0;
+          out << csv_field(name) << "," << csv_field(claim.value("id", std::string())) << ","
+              << csv_field(s.value("label", std::string())) << "," << h[i].get<std::string>() << ","
+              << (N ? std::to_string(N) : std::string()) << "," << error[i].get<std::string>()
+              << "," << s.value("floor", std::string()) << ","
+              << (N && evaluations.count(N) ? evaluations[N] : "") << ","
+              << (N && seconds.count(N) ? seconds[N] : "") << "\n";
+        }
+      }
+  }
+  return out.str();
+}
+
 std::vector<std::string> write_report_directory(const std::string& directory,
                                                 const nlohmann::json& report) {
   namespace fs = std::filesystem;
   const std::vector<std::pair<std::string, std::string>> files = {
       {"report.json", report.dump(2) + "\n"},
       {"report.html", render_html(report)},
-      {"junit.xml", render_junit(report)}};
+      {"junit.xml", render_junit(report)},
+      {"report.csv", render_csv(report)}};
   std::error_code error;
   fs::create_directories(directory, error);
   if (error) throw ReportError("cannot create " + directory + ": " + error.message());

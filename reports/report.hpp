@@ -42,6 +42,10 @@ nlohmann::json merge_reports(const std::vector<std::pair<std::string, nlohmann::
 // Reads a report.json; ReportError if it is not JSON or not of report_schema.
 nlohmann::json read_report(const std::string& path);
 
+// report.csv: every point of every series, one row each (case, claim, series, h, N, error, floor,
+// and the run's L evaluations and seconds at that N), for a user's own plots.
+std::string render_csv(const nlohmann::json& report);
+
 // Writes DIR/report.json, DIR/report.html and DIR/junit.xml: all rendered
 // first, then each written atomically, so a failure leaves none half-written.
 // Returns the three paths.

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cmath>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -113,6 +114,13 @@ struct SweepRecord {
   std::string stopped;               // why refinement stopped (empty without --refine)
 };
 
+// What one run of the sweep (N steps) cost: the evaluations of L it made (deterministic: the
+// work-precision diagram's axis) and its wall time.
+struct RunCost {
+  long lagrangian_evaluations = 0;
+  double seconds = 0;
+};
+
 struct CaseResult {
   CaseSpec spec;
   std::string scalar;          // "double", "long double", "float128" or "mpfr"
@@ -131,6 +139,7 @@ struct CaseResult {
   std::string smallest_error;
   double guard_bits = 0;
   double seconds = 0;
+  std::map<int, RunCost> run_costs;  // by N
 };
 
 }  // namespace vivv

@@ -161,6 +161,23 @@ def main(argv):
                 problems.append(f"{key}: judged against a tolerance at each h, but the plot has no tolerance line")
             if len(claim["series"]) == 1 and "data-fit=" in match.group(1):
                 problems.append(f"{key}: an identity plotted with a fitted order")
+    # Work-precision: a diagram for each group of two or more cases with one system, parameters,
+    # initial state and T that have a global-order claim and counted costs.
+    groups = Counter(f"{c['system']} {json.dumps(c.get('parameters'))} {json.dumps(c['initial'])} {c.get('T')}"
+                     for c in report["cases"] if c.get("cost") and any(cl["id"] == "global-order" for cl in c["claims"]))
+    expected_diagrams = sum(1 for count in groups.values() if count >= 2)
+    diagrams = len(re.findall(r'data-work-precision="', dom))
+    if diagrams != expected_diagrams:
+        problems.append(f"{diagrams} work-precision diagrams, expected {expected_diagrams}")
+    # report.csv beside it: one row per point of every series, with the run's cost where counted.
+    import csv
+    with open(os.path.join(directory, "report.csv"), newline="") as f:
+        csv_rows = list(csv.DictReader(f))
+    points = sum(len(s["h"]) for case in report["cases"] for claim in case["claims"] for s in claim["series"])
+    if len(csv_rows) != points:
+        problems.append(f"report.csv has {len(csv_rows)} rows, report.json {points} points")
+    if report["cases"] and report["cases"][0].get("cost") and not any(row["L_evaluations"] for row in csv_rows):
+        problems.append("report.csv carries no L evaluations")
     # Each case's facts name its discretization, and a formula's L and L_d as written.
     facts = attribute_values(dom, "data-fact")
     cases_with = lambda test: sum(1 for case in report["cases"] if test(case.get("case_file", {})))

@@ -42,9 +42,12 @@ template <LagrangianSystem System>
 std::shared_ptr<const std::vector<State<typename System::Scalar, System::dimension>>>
 shared_map_trajectory(const CaseContext<System>& context, const typename System::Scalar& h, int N) {
   auto& kept = context.map_runs[N];
-  if (!kept)
+  if (!kept) {
+    const CostMeter meter;
     kept = std::make_shared<const std::vector<State<typename System::Scalar, System::dimension>>>(
         map_trajectory(context, h, N));
+    context.run_costs[N] = meter.cost();
+  }
   return kept;
 }
 
@@ -73,11 +76,12 @@ std::shared_ptr<const DelTrajectory<typename System::Scalar, System::dimension>>
   if (own)
     if (auto kept = context.del_runs.find(N); kept != context.del_runs.end()) return kept->second;
   context.report("DEL sweep N = " + std::to_string(N));
+  const CostMeter meter;
   auto [q0, q1] = context.start(scheme, h);
   auto run = std::make_shared<const DelTrajectory<T, System::dimension>>(
       del_trajectory(context.system, scheme, q0, q1, h, N,
                      context.step_progress("DEL sweep N = " + std::to_string(N))));
-  if (own) context.del_runs[N] = run;
+  if (own) context.del_runs[N] = run, context.run_costs[N] = meter.cost();
   return run;
 }
 
@@ -92,8 +96,10 @@ SweepRun<System> run_sweep(const CaseContext<System>& context, const DelScheme<t
     int N = context.spec.steps[i];
     if (context.tq) {  // the TQ evolution from the exact initial state
       context.report("TQ sweep N = " + std::to_string(N));
+      const CostMeter meter;
       auto states = tq_trajectory(context.system, *context.tq, context.initial, h, N,
                                   context.step_progress("TQ sweep N = " + std::to_string(N)));
+      if (&scheme == &context.scheme) context.run_costs[N] = meter.cost();
       run.q_final.push_back(states.back().q);
       run.p_final.push_back(momentum(context.system, states.back().q, states.back().w));
       continue;
