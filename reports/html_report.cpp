@@ -853,7 +853,9 @@ std::string render_time_plot(const json& claim, const std::string& key) {
   return svg.str() + legend.str();
 }
 
-std::string render_work_precision(const json& cases) {
+std::string render_work_precision(const json& cases, const json& run, bool wall_time) {
+  const json run_seconds =
+      run.is_object() ? run.value("run_seconds", json::object()) : json::object();
   // Cases of one system, parameters, initial state and T: their global errors are comparable.
   struct Line {
     std::string name, discretization, order;
@@ -868,11 +870,18 @@ std::string render_work_precision(const json& cases) {
     const std::string group = text_of(c, "system") + " " + c.value("parameters", json()).dump() +
                               " " + c.value("initial", json()).dump() +
                               " T = " + c.value("T", json()).dump();
+    // The cost of each N's run, log10: its evaluations of L, or its wall time.
     std::map<int, double> evaluations;
-    for (const auto& row : c.value("cost", json::array()))
-      if (row.is_object() && row.value("L_evaluations", 0L) > 0)
-        evaluations[row.value("N", 0)] =
-            std::log10(static_cast<double>(row.value("L_evaluations", 0L)));
+    if (!wall_time) {
+      for (const auto& row : c.value("cost", json::array()))
+        if (row.is_object() && row.value("L_evaluations", 0L) > 0)
+          evaluations[row.value("N", 0)] =
+              std::log10(static_cast<double>(row.value("L_evaluations", 0L)));
+    } else if (run_seconds.is_object()) {
+      for (const auto& row : run_seconds.value(text_of(c, "name"), json::array()))
+        if (row.is_object() && row.value("seconds", 0.0) > 0)
+          evaluations[row.value("N", 0)] = std::log10(row.value("seconds", 0.0));
+    }
     if (evaluations.empty()) continue;
     for (const auto& claim : c.value("claims", json::array())) {
       if (text_of(claim, "id") != "global-order" || claim.value("series", json::array()).empty())
@@ -927,7 +936,7 @@ std::string render_work_precision(const json& cases) {
     out << "<figure class=\"work-precision\"><svg class=\"plot wp\" "
            "xmlns=\"http://www.w3.org/2000/svg\" width=\""
         << width << "\" height=\"" << height << "\" viewBox=\"0 0 " << width << " " << height
-        << "\" data-work-precision=\"" << figure++
+        << "\" data-work-precision=\"" << (wall_time ? "seconds-" : "evaluations-") << figure++
         << "\" role=\"img\" aria-label=\"work-precision diagram\">\n"
         << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << right - left
         << "\" height=\"" << bottom - top << "\" fill=\"#fbfcfe\" stroke=\"#c5ccd8\"/>\n";
@@ -948,7 +957,10 @@ std::string render_work_precision(const json& cases) {
           << "\" y2=\"" << fixed(py(y)) << "\" stroke=\"#e3e7ee\"/><text x=\"" << left - 6
           << "\" y=\"" << fixed(py(y) + 4) << "\" text-anchor=\"end\">" << label << "</text>";
     out << "</g>\n<text x=\"" << (left + right) / 2 << "\" y=\"" << bottom + 36
-        << "\" text-anchor=\"middle\">evaluations of L (the run's cost, counted)</text>\n<text "
+        << "\" text-anchor=\"middle\">"
+        << (wall_time ? "wall time of the run, s (this machine)"
+                      : "evaluations of L (the run's cost, counted)")
+        << "</text>\n<text "
            "transform=\"translate(16 "
         << (top + bottom) / 2 << ") rotate(-90)\" text-anchor=\"middle\">|q_N − q(T)|</text>\n";
     std::ostringstream legend;
@@ -972,10 +984,11 @@ std::string render_work_precision(const json& cases) {
     }
     legend << "</ul>";
     out << "</svg>" << legend.str() << "<figcaption>" << escape(group)
-        << ": the global error against the evaluations of L each run made (log-log; shaded: below "
-           "the floor). "
-           "Lower and further left is better; wall times are in "
-           "report.csv.</figcaption></figure>\n";
+        << ": the global error against "
+        << (wall_time ? "the wall time of each run on the machine that ran it"
+                      : "the evaluations of L each run made (the same on any machine)")
+        << " (log-log; shaded: below the floor). Lower and further left is "
+           "better.</figcaption></figure>\n";
   }
   return out.str();
 }
@@ -1335,7 +1348,9 @@ std::string render_html(const json& report) {
   }
   page << "</tbody></table>\n";
 
-  if (const std::string diagrams = render_work_precision(cases); !diagrams.empty())
+  if (const std::string diagrams =
+          render_work_precision(cases, run, false) + render_work_precision(cases, run, true);
+      !diagrams.empty())
     page << "<h2 id=\"work-precision\">Work and precision</h2>\n<p class=\"lede\">For the cases "
             "that share a "
             "system, parameters, initial state and T: each method's global error against what its "

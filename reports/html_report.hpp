@@ -38,7 +38,9 @@ std::string render_time_plot(const nlohmann::json& claim, const std::string& key
 
 // Work-precision diagrams: for each group of cases with one system, parameters, initial state and
 // T (two or more with a global-order claim and counted costs), |q_N − q(T)| against the
-// evaluations of L of each run, one line per case; "" when there is no such group.
-std::string render_work_precision(const nlohmann::json& cases);
+// evaluations of L of each run (or, with `wall_time`, its seconds from the run block), one line
+// per case; "" when there is no such group.
+std::string render_work_precision(const nlohmann::json& cases, const nlohmann::json& run,
+                                  bool wall_time);
 
 }  // namespace vivv

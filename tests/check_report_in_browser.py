@@ -166,9 +166,10 @@ def main(argv):
     groups = Counter(f"{c['system']} {json.dumps(c.get('parameters'))} {json.dumps(c['initial'])} {c.get('T')}"
                      for c in report["cases"] if c.get("cost") and any(cl["id"] == "global-order" for cl in c["claims"]))
     expected_diagrams = sum(1 for count in groups.values() if count >= 2)
-    diagrams = len(re.findall(r'data-work-precision="', dom))
-    if diagrams != expected_diagrams:
-        problems.append(f"{diagrams} work-precision diagrams, expected {expected_diagrams}")
+    for axis in ("evaluations", "seconds"):
+        diagrams = len(re.findall(rf'data-work-precision="{axis}-', dom))
+        if diagrams != expected_diagrams:
+            problems.append(f"{diagrams} work-precision diagrams against {axis}, expected {expected_diagrams}")
     # report.csv beside it: one row per point of every series, with the run's cost where counted.
     import csv
     with open(os.path.join(directory, "report.csv"), newline="") as f:
