@@ -145,8 +145,18 @@ void compare_with_baseline(nlohmann::json& report, const nlohmann::json& baselin
       std::string explanation = status == "regressed" ? regressed
                                 : status == "improved" ? improved
                                                        : unchanged;
+      const auto judged_by_order = [](const nlohmann::json& series) {
+        return std::any_of(series.begin(), series.end(), [](const nlohmann::json& s) {
+          return s.value("rule", std::string()) == "order";
+        });
+      };
       if (status == "not compared" && rows.empty())
-        explanation = "no series of this claim has a label the baseline's claim has";
+        explanation =
+            !judged_by_order(claim.value("series", nlohmann::json::array()))
+                ? "no series of this claim is judged by the order rule: it has no order and "
+                  "constant to "
+                  "compare"
+                : "no series judged by the order rule has a label the baseline's claim has";
       claim["baseline"] = {{"status", status}, {"explanation", explanation}, {"series", rows}};
     }
   }
