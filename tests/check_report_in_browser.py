@@ -41,6 +41,25 @@ def attribute_values(dom, name):
     return Counter(html.unescape(v) for v in re.findall(rf'{name}="([^"]*)"', dom))
 
 
+def check_evidence_figures(report, dom, evidence, attribute, svg_class, mark, what, problems):
+    """One figure `what` (an <svg class=SVG_CLASS ATTRIBUTE=KEY>) with at least one MARK for every
+    claim whose evidence has EVIDENCE, none for the others, and no NaN or infinity in any."""
+    keys = [f"{case['name']}/{claim['id']}" for case in report["cases"] for claim in case["claims"]
+            if isinstance(claim.get("evidence"), dict) and claim["evidence"].get(evidence)]
+    shown = attribute_values(dom, attribute)
+    for key in keys:
+        if shown[key] != 1:
+            problems.append(f"{key}: {shown[key]} {what}, expected 1")
+    for key in set(shown) - set(keys):
+        problems.append(f"{key}: {what} for a claim without {evidence}")
+    for match in re.finditer(rf'<svg class="{svg_class}"[^>]*{attribute}="([^"]*)"[^>]*>(.*?)</svg>', dom, re.S):
+        if f"{mark}=" not in match.group(2):
+            problems.append(f"{html.unescape(match.group(1))}: {what} without {mark}")
+        if re.search(r'="[^"]*\b(nan|inf)\b', match.group(2)):
+            problems.append(f"{html.unescape(match.group(1))}: NaN or infinity in the {what}")
+    return keys, shown
+
+
 def main(argv):
     if len(argv) != 4:
         print(__doc__, file=sys.stderr)
@@ -73,19 +92,8 @@ def main(argv):
         if re.search(r'="[^"]*\b(nan|inf)\b', match.group(2)):
             problems.append(f"{html.unescape(match.group(1))}: NaN or infinity in the plot")
     # A map of h_max against |w| for every claim whose evidence has h_max_by_speed, none for others.
-    mapped = [f"{case['name']}/{claim['id']}" for case in report["cases"] for claim in case["claims"]
-              if isinstance(claim.get("evidence"), dict) and claim["evidence"].get("h_max_by_speed")]
-    maps = attribute_values(dom, "data-claim-map")
-    for key in mapped:
-        if maps[key] != 1:
-            problems.append(f"{key}: {maps[key]} maps of h_max against |w|, expected 1")
-    for key in set(maps) - set(mapped):
-        problems.append(f"{key}: map of h_max against |w| for a claim without h_max_by_speed")
-    for match in re.finditer(r'<svg class="plot map"[^>]*data-claim-map="([^"]*)"[^>]*>(.*?)</svg>', dom, re.S):
-        if "data-map-point=" not in match.group(2):
-            problems.append(f"{html.unescape(match.group(1))}: map without points")
-        if re.search(r'="[^"]*\b(nan|inf)\b', match.group(2)):
-            problems.append(f"{html.unescape(match.group(1))}: NaN or infinity in the map")
+    mapped, maps = check_evidence_figures(report, dom, "h_max_by_speed", "data-claim-map", "plot map",
+                                          "data-map-point", "map of h_max against |w|", problems)
     # Verdicts as text and colour class, one per findings row.
     shown = Counter(re.findall(r'<tr class="row-(pass|fail|inconclusive|error|xfail|xpass)', dom))
     if shown != verdicts:
@@ -130,17 +138,8 @@ def main(argv):
             problems.append(f"{key}: {legends[key]} series legends below the plot, expected 1")
     # A plot against t for every claim whose evidence has energy_error_against_t (energy-behaviour,
     # modified-energy), with a line per h; none for the others.
-    timed = [f"{case['name']}/{claim['id']}" for case in report["cases"] for claim in case["claims"]
-             if isinstance(claim.get("evidence"), dict) and claim["evidence"].get("energy_error_against_t")]
-    time_plots = attribute_values(dom, "data-claim-time-plot")
-    for key in timed:
-        if time_plots[key] != 1:
-            problems.append(f"{key}: {time_plots[key]} plots against t, expected 1")
-    for key in set(time_plots) - set(timed):
-        problems.append(f"{key}: a plot against t without energy_error_against_t")
-    for match in re.finditer(r'<svg class="plot time"[^>]*data-claim-time-plot="([^"]*)"[^>]*>(.*?)</svg>', dom, re.S):
-        if "data-time-line=" not in match.group(2):
-            problems.append(f"{html.unescape(match.group(1))}: plot against t without a line")
+    timed, _ = check_evidence_figures(report, dom, "energy_error_against_t", "data-claim-time-plot", "plot time",
+                                      "data-time-line", "plot against t", problems)
     energy_claims = [f"{case['name']}/{claim['id']}" for case in report["cases"] for claim in case["claims"]
                      if claim["id"] == "energy-behaviour" and claim["verdict"] != "error"]
     for key in energy_claims:
@@ -172,8 +171,13 @@ def main(argv):
             problems.append(f"{diagrams} work-precision diagrams against {axis}, expected {expected_diagrams}")
     # report.csv beside it: one row per point of every series, with the run's cost where counted.
     import csv
-    with open(os.path.join(directory, "report.csv"), newline="") as f:
-        csv_rows = list(csv.DictReader(f))
+    csv_path = os.path.join(directory, "report.csv")
+    csv_rows = []
+    if not os.path.exists(csv_path):
+        problems.append("no report.csv beside report.json")
+    else:
+        with open(csv_path, newline="") as f:
+            csv_rows = list(csv.DictReader(f))
     points = sum(len(s["h"]) for case in report["cases"] for claim in case["claims"] for s in claim["series"])
     if len(csv_rows) != points:
         problems.append(f"report.csv has {len(csv_rows)} rows, report.json {points} points")
