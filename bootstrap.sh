@@ -17,8 +17,9 @@ case "$mode" in run|test|sanitize) ;; *) echo "usage: bash bootstrap.sh run|test
 packages=(g++ cmake make ninja-build libeigen3-dev libboost-dev libmpfr-dev libgmp-dev nlohmann-json3-dev
           libvalijson-dev libgtest-dev libbenchmark-dev python3-jsonschema)
 # Only needed to test: the "browser" tests render report.html in headless Chromium, the
-# "scale" tests start shards with GNU parallel.
-if [ "$mode" = test ]; then packages+=(chromium parallel); fi
+# "scale" tests start shards with GNU parallel, the "python" tests run the integrators of
+# examples/python-integrator (mpmath) through the process protocol.
+if [ "$mode" = test ]; then packages+=(chromium parallel python3-mpmath); fi
 missing=()
 for package in "${packages[@]}"; do
   dpkg -s "$package" >/dev/null 2>&1 || missing+=("$package")

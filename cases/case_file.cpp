@@ -365,6 +365,44 @@ DiscretizationSpec read_discretization(Reader reader, int dimension,
                                        const std::vector<std::pair<std::string, std::string>>& parameters,
                                        bool allow_tq = true) {
   DiscretizationSpec spec;
+  if (reader.has("kind") && reader.get("kind") == "process") {
+    // A one-step map in another program (protocol vivv-map/1): its command and declared order.
+    spec.kind = "process";
+    if (!allow_tq)
+      reader.fail("kind", "a one-step map cannot be pulled back as a Q×Q discrete Lagrangian");
+    if (reader.has("formalism"))
+      reader.fail("formalism",
+                  "a one-step map (kind \"process\") is neither a Q×Q nor a TQ discretization: "
+                  "leave formalism out");
+    spec.formalism = "map";
+    const auto& command = reader.get("command");
+    if (!command.is_array() || command.empty() || command.size() > 64)
+      reader.fail(
+          "command",
+          "expected the program and its arguments as an array of 1 to 64 strings, such as "
+          "[\"python3\", \"step.py\"] (run without a shell, in the case file's folder), got " +
+              echo(command));
+    for (std::size_t i = 0; i < command.size(); ++i) {
+      const std::string where = "command[" + std::to_string(i) + "]";
+      if (!command[i].is_string()) reader.fail(where, "expected a string, got " + echo(command[i]));
+      const std::string word = command[i].get<std::string>();
+      if ((i == 0 && word.empty()) || word.size() > 4096 || word.find('\0') != std::string::npos)
+        reader.fail(
+            where,
+            i == 0 ? "expected the program to start: a name on PATH or a path relative to the case "
+                     "file's folder, at most 4096 characters without NUL"
+                   : "expected an argument of at most 4096 characters without NUL");
+      spec.command.push_back(word);
+    }
+    spec.declared_order =
+        reader.integer("order", 1, 64,
+                       "the order its author states, |Phi_h - F_h| = O(h^(order+1)), "
+                       "which global-order checks");
+    if (reader.has("twin"))
+      reader.fail("twin", "a one-step map has no discrete Lagrangian to add a twin term to");
+    reader.finish();
+    return spec;
+  }
   if (reader.has("kind") && (reader.get("kind") == "odeint" || reader.get("kind") == "map")) {
     // A one-step map of another library (odeint's, or one a program linking vivv registered):
     // no formalism, no twin term, nothing but its name.

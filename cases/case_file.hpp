@@ -57,7 +57,7 @@ struct TQSpec {
 };
 
 struct DiscretizationSpec {
-  std::string formalism = "qxq";         // "qxq", "tq", or "map" for kind "odeint"
+  std::string formalism = "qxq";  // "qxq", "tq", or "map" for kinds "odeint", "map", "process"
   std::string kind;                      // a Q×Q rule name (core/discrete_lagrangian.hpp)
   std::optional<std::string> parameter;  // "alpha" or "beta", for the rules that take one
   // kind "expression": L_d as a formula in qb, qe, h, L(x, v) and the system's parameters, and
@@ -71,6 +71,13 @@ struct DiscretizationSpec {
   int galerkin_degree = 0, galerkin_nodes = 0;
   std::string galerkin_quadrature;
   std::string stepper;  // kind "odeint": one of odeint_steppers() (core/odeint_map.hpp)
+  // kind "process": a one-step map in another program, spoken to over its standard input and
+  // output (protocol vivv-map/1, docs/process-protocol.md); its order is declared_order.
+  std::vector<std::string> command;  // the program and its arguments, never through a shell
+  // Set by the run, not the case file: whether this run may start programs named in case files
+  // (vivv run --allow-process), and how long one may take to answer (--process-timeout).
+  bool process_allowed = false;
+  double process_timeout_seconds = 30;
   std::optional<TwinSpec> twin;
   std::optional<TQSpec> tq;              // formalism "tq"
 };

@@ -36,6 +36,11 @@ struct OneStepMap {
   virtual State<T, n> step(const State<T, n>& x, const T& h) const = 0;
   // ∂(q', p')/∂(q, p) at x.
   virtual Matrix<T, 2 * n, 2 * n> jacobian(const State<T, n>& x, const T& h) const = 0;
+  // How jacobian() computes it, for the report.
+  virtual std::string jacobian_method() const {
+    return "forward-mode automatic differentiation of one step of " + name() +
+           " in first-order jets over (q, p), w = M^-1 p";
+  }
 };
 
 // The Jacobian's scalar: a value and its gradient in the 2n variables (q, p).

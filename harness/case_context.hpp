@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <memory>
@@ -16,12 +17,13 @@
 #include "core/euler_lagrange_tape.hpp"
 #include "core/formula_discretization.hpp"
 #include "core/odeint_map.hpp"
-#include "core/user_map.hpp"
+#include "core/quadrature.hpp"
 #include "core/state.hpp"
 #include "core/tq_evolution.hpp"
-#include "core/quadrature.hpp"
+#include "core/user_map.hpp"
 #include "harness/claim_result.hpp"
 #include "harness/order_fit.hpp"
+#include "harness/process_map.hpp"
 #include "references/reference_flow.hpp"
 #include "references/taylor_reference.hpp"
 
@@ -317,6 +319,7 @@ struct CaseContext {
   // The odeint stepper of the case on the system's separable form, after checking that L is
   // ½ wᵀ M w − V(q) with M constant at the initial and final states and their two mixtures.
   std::shared_ptr<const OneStepMap<T, n>> make_map() const {
+    if (spec.discretization.kind == "process") return make_process_map();
     std::vector<State<T, n>> samples = {initial, final_state, {initial.q, final_state.w}, {final_state.q, initial.w}};
     if (auto defect = separability_defect(system, samples))
       throw CaseError(
@@ -336,6 +339,30 @@ struct CaseContext {
                       "'" + spec.discretization.stepper + "' is not registered for " + scalar_name<T>() + " and " +
                           std::to_string(n) + " coordinates");
     return factory->second(separable_form(system, initial));
+  }
+
+  // The case's map in another program (kind "process"), started only where the run allows it.
+  std::shared_ptr<const OneStepMap<T, n>> make_process_map() const {
+    const DiscretizationSpec& d = spec.discretization;
+    std::string command;
+    for (const auto& word : d.command) command += (command.empty() ? "" : " ") + word;
+    if (!d.process_allowed)
+      throw CaseError(
+          spec.file, "discretization.command",
+          "this case runs the program '" + command.substr(0, 200) +
+              "' that it names; vivv starts programs named in case files only when the run "
+              "allows it: vivv run --allow-process");
+    nlohmann::json system_json = spec.source.contains("system") && spec.source["system"].is_object()
+                                     ? spec.source["system"]
+                                     : nlohmann::json{{"name", spec.system}};
+    nlohmann::json parameters = nlohmann::json::object();
+    for (const auto& [name, value] : spec.parameters) parameters[name] = value;
+    system_json["params"] = parameters;
+    MapProcess::Options options;
+    options.command = d.command;
+    options.directory = std::filesystem::absolute(spec.file).parent_path().string();
+    options.timeout_seconds = d.process_timeout_seconds;
+    return std::make_shared<ProcessMap<System>>(system, options, system_json, d.declared_order);
   }
 
   // h = T/N for every N of the sweep.

@@ -1,10 +1,11 @@
 // vivv: the command-line tool (docs/case-files.md).
 //
-//   vivv run [CASE.json ...] [--out DIR] [--digits D] [--scalar S] [--jobs J] [--shard I/N] [--refine]
+//   vivv run [CASE.json ...] [--out DIR] [--digits D] [--scalar S] [--jobs J] [--shard I/N]
+//   [--refine]
 //            [--max-seconds S] [--progress]
 //   vivv report REPORT.json [MORE.json ...] --out DIR   (merge and re-render)
 //   vivv list
-//   vivv bench reference|del
+//   vivv bench reference|del|process
 //
 // Exit codes: 0 every claim holds (or fails as the case expects: xfail), 1 a
 // claim fails, errs or passes although marked xfail, 2 bad input (the message
@@ -42,8 +43,10 @@
 #include "core/discrete_lagrangian.hpp"
 #include "harness/baseline.hpp"
 #include "harness/bench_del.hpp"
+#include "harness/bench_process.hpp"
 #include "harness/bench_reference.hpp"
 #include "harness/claims.hpp"
+#include "harness/map_process.hpp"
 #include "harness/rejudge.hpp"
 #include "harness/run_case.hpp"
 #include "harness/version.hpp"
@@ -98,6 +101,10 @@ struct RunOptions {
   // --baseline OLD/report.json: each claim's fitted series compared with OLD's (regressed: exit 1).
   std::optional<std::string> baseline;
   double baseline_tolerance = default_baseline_tolerance;
+  // --allow-process: cases may start the programs they name (discretization kind "process");
+  // --process-timeout: the seconds such a program has for each answer.
+  bool allow_process = false;
+  double process_timeout = 30;
 };
 
 std::string default_suite_directory() { return std::string(VIVV_SOURCE_DIR) + "/cases/suite"; }
@@ -202,6 +209,23 @@ RunOptions parse_run_options(const std::vector<std::string>& args) {
             "10] (0.1 allows 10 %), got '" +
             text + "'");
       options.baseline_tolerance = tolerance;
+    } else if (arg == "--allow-process")
+      options.allow_process = true;
+    else if (arg == "--process-timeout") {
+      const std::string text = value();
+      std::size_t used = 0;
+      double seconds = 0;
+      try {
+        seconds = std::stod(text, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != text.size() || !(seconds >= 0.1 && seconds <= 3600))
+        throw BadInput(
+            "--process-timeout: expected the seconds a map program may take to answer, from 0.1 to "
+            "3600, got '" +
+            text.substr(0, 40) + "'");
+      options.process_timeout = seconds;
     } else if (arg.rfind("--", 0) == 0)
       throw BadInput("unknown option '" + arg + "'");
     else options.case_files.push_back(arg);
@@ -231,6 +255,7 @@ void note_phase(const std::string& file, const std::string& phase) {
 int refusal_fd = -1;
 
 extern "C" void budget_exhausted(int) {
+  end_map_processes();  // no map program outlives the case
   [[maybe_unused]] auto written = ::write(STDERR_FILENO, budget_message, budget_message_length);
   if (refusal_fd >= 0) written = ::write(refusal_fd, budget_message, budget_message_length);
   std::_Exit(exit_bad_input);  // nothing was written
@@ -550,6 +575,21 @@ int command_run(const std::vector<std::string>& args, const std::string& command
   }
   // The options against every case before any computes: a case they cannot run refuses the run.
   for (const auto& spec : specs) check_precision_options(spec, options.scalar, options.digits);
+  for (auto& spec : specs) {
+    if (spec.discretization.kind != "process") continue;
+    if (!options.allow_process) {
+      std::string command;
+      for (const auto& word : spec.discretization.command)
+        command += (command.empty() ? "" : " ") + word;
+      throw CaseError(
+          spec.file, "discretization.command",
+          "this case runs the program '" + command.substr(0, 200) +
+              "' that it names; vivv starts programs named in case files only when asked to: "
+              "vivv run --allow-process");
+    }
+    spec.discretization.process_allowed = true;
+    spec.discretization.process_timeout_seconds = options.process_timeout;
+  }
   // Every case file is read and checked above, so that each shard refuses the same bad input;
   // a shard then computes its own positions.
   std::vector<std::size_t> positions;
@@ -685,6 +725,11 @@ int command_list() {
               << ")\n";
   std::cout << "one-step maps of your own (\"kind\": \"map\", \"name\"): registered by a program that links vivv "
                "(vivv::register_map, docs/library.md); none in this tool\n";
+  std::cout << "one-step maps in another program (\"kind\": \"process\", \"command\": [program, "
+               "args...], "
+               "\"order\"): protocol vivv-map/1 over its standard input and output "
+               "(docs/process-protocol.md); "
+               "needs vivv run --allow-process\n";
   std::cout << "claims:\n";
   for (const auto& claim : registered_claims())
     std::cout << "  " << claim.id << " [" << claim.source << "]: " << claim.prediction << "\n";
@@ -698,10 +743,11 @@ int usage(std::ostream& out, int code) {
          "[--shard I/N] [--refine]\n"
          "                [--max-seconds S] [--keep-going] [--baseline OLD/report.json "
          "[--baseline-tolerance X]]\n"
+         "                [--allow-process [--process-timeout S]]\n"
          "                [--progress|--quiet]\n"
          "       vivv report REPORT.json [MORE.json ...] --out DIR\n"
          "       vivv list\n"
-         "       vivv bench reference|del\n"
+         "       vivv bench reference|del|process\n"
          "       vivv --version\n"
          "run `vivv run --help` for what each option does\n";
   return code;
@@ -750,6 +796,12 @@ int run_help(std::ostream& out) {
          "recorded as\n"
          "                     refused in the reports and the others keep their results; exit "
          "still 2\n"
+         "  --allow-process    let cases start the programs they name (discretization kind "
+         "\"process\",\n"
+         "                     protocol vivv-map/1); without it such a case refuses the run\n"
+         "  --process-timeout S\n"
+         "                     seconds a map program may take for its greeting and each answer "
+         "(default 30)\n"
          "  --progress         progress lines on stderr (the default on a terminal)\n"
          "  --quiet            no progress lines\n"
          "  --help, -h         this text\n";
@@ -783,9 +835,16 @@ int main(int argc, char** argv) {
     if (command == "bench" && args.size() == 1 && args[0] == "reference")
       return run_reference_benchmark(std::cout);
     if (command == "bench" && args.size() == 1 && args[0] == "del") return run_del_benchmark(std::cout);
+    if (command == "bench" && args.size() == 1 && args[0] == "process")
+      return run_process_benchmark(std::cout, fs::read_symlink("/proc/self/exe").string());
+    if (command == "map-echo" && args.empty())
+      return run_map_echo();  // the echo `bench process` talks to
     if (command == "bench") {
-      std::cerr << "vivv bench: expected one of: reference (the Taylor reference flow against Boost.Odeint), "
-                   "del (a DEL step against the L evaluations it needs)\n";
+      std::cerr
+          << "vivv bench: expected one of: reference (the Taylor reference flow against "
+             "Boost.Odeint), "
+             "del (a DEL step against the L evaluations it needs), process (protocol vivv-map/1's "
+             "overhead per step against a DEL step)\n";
       return exit_bad_input;
     }
     if (command == "report") return command_report(args, command_line);

@@ -71,8 +71,7 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
         y << at.q, momentum(context.system, at.q, at.w);
         jacobian_checks.push_back(check_jacobian(h, worst, step, y, jacobians[worst], scale));
       });
-      claim.evidence["jacobian"] = "forward-mode automatic differentiation of one step of " + context.map->name() +
-                                   " in first-order jets over (q, p), w = M^-1 p";
+      claim.evidence["jacobian"] = context.map->jacobian_method();
       claim.evidence["tolerance_rule"] =
           std::to_string(ulps) +
           " ulps × max(1, |J|)² per step (measured: the step with the largest "

@@ -1,0 +1,86 @@
+// A one-step map in another program, spoken to over its standard input and output with one
+// JSON object per line: protocol vivv-map/1 (docs/process-protocol.md). MapProcess is the
+// program's side of it as vivv sees it: starting the program (never through a shell, in the
+// case file's folder, in a process group of its own that a terminal's signals do not reach),
+// the greeting, one request and its answer at a time within a timeout, and its end. Nothing
+// outlives vivv: the destructor closes the program's input and kills what is left of its
+// group; vivv ended by SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1 or SIGUSR2 kills every group
+// first; the kernel kills the program itself when vivv dies by SIGKILL (PR_SET_PDEATHSIG).
+#pragma once
+
+#include <sys/types.h>
+
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace vivv {
+
+// The protocol's name and version, in the greeting and in its answer.
+inline constexpr const char* map_protocol = "vivv-map/1";
+
+// A program that cannot be started, declines, dies, hangs or breaks the protocol: bad input
+// (exit 2), the message naming the program and the request it failed.
+struct MapProcessError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+class MapProcess {
+ public:
+  struct Options {
+    std::vector<std::string> command;  // the program and its arguments
+    std::string directory;             // its working directory: the case file's folder
+    double timeout_seconds = 30;       // for the greeting and for each answer
+  };
+
+  // Starts the program and greets it with `greeting` (which carries the protocol's name);
+  // throws MapProcessError when it cannot start, declines ({"error": …}) or answers otherwise.
+  MapProcess(Options options, const nlohmann::json& greeting);
+  ~MapProcess();
+  MapProcess(const MapProcess&) = delete;
+  MapProcess& operator=(const MapProcess&) = delete;
+
+  // Sends one request and returns the answer, a JSON object; an answer {"error": …}, no answer
+  // in time, an early exit or a line that is not a JSON object throws MapProcessError naming the
+  // request.
+  nlohmann::json request(const nlohmann::json& message);
+
+  // "'python3 step.py'" for messages.
+  std::string name() const;
+  // Requests answered so far (the greeting not counted).
+  long requests() const { return requests_; }
+  // A MapProcessError naming the program, the request just answered (at most 300 characters of
+  // it) and `what` is wrong with its answer.
+  [[noreturn]] void fail_answer(const std::string& what) const;
+
+ private:
+  void greet(const nlohmann::json& greeting);
+  // Closes its input, waits up to a second for it to end, kills its group and reaps it.
+  void stop() noexcept;
+  void send(const std::string& line, const std::string& request_name);
+  std::string receive(const std::string& request_name);
+  [[noreturn]] void fail(const std::string& request_name, const std::string& what);
+  // "exited with status 1" / "was ended by signal 9 (Killed)", after it closed its output.
+  std::string how_it_ended();
+  void drain_stderr();
+
+  Options options_;
+  pid_t pid_ = -1;
+  int input_ = -1, output_ = -1, errors_ = -1;  // vivv's ends of the three pipes
+  std::string buffer_;                          // what was read of the answer line so far
+  std::string stderr_tail_;  // the last 2000 characters the program wrote to its stderr
+  std::string last_request_;
+  long requests_ = 0;
+};
+
+// Kills the process groups of every running map program (async-signal-safe: for a signal
+// handler, e.g. the --max-seconds budget's, that ends vivv).
+void end_map_processes() noexcept;
+
+// The number of significant digits of a decimal number as the protocol writes it
+// ("-1.2500e-3" has 5; trailing zeros count), 0 for the number zero, −1 for text that is not
+// a decimal number ([+-]digits[.digits][e[+-]digits], digits on at least one side of a point).
+int significant_digits(const std::string& text);
+
+}  // namespace vivv

@@ -1,0 +1,162 @@
+"""A map program that declines, hangs, dies or breaks protocol vivv-map/1 ends its case with exit
+2 naming the program and the request, within the timeout, with no report written and no
+process of its left behind — also when vivv is ended by SIGINT or SIGTERM, alone or under --jobs.
+
+usage: check_process_maps.py VIVV WORK_DIR
+
+The map programs are tests/process/fault.py in its modes. Survivors are found by a marker on
+the command line of a grandchild each program starts; the check first shows that it finds such
+a process (its own negative control).
+"""
+import json
+import os
+import pathlib
+import re
+import signal
+import subprocess
+import sys
+import time
+import uuid
+
+HERE = pathlib.Path(__file__).resolve().parent
+FAULT = HERE / "process" / "fault.py"
+TIMEOUT = 2  # --process-timeout for the fault cases
+
+
+def survivors(marker):
+    found = []
+    for entry in pathlib.Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            if marker.encode() in (entry / "cmdline").read_bytes():  # gone meanwhile: OSError
+                found.append(int(entry.name))
+        except OSError:
+            pass
+    return found
+
+
+def wait_for(condition, seconds):
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline:
+        if condition():
+            return True
+        time.sleep(0.05)
+    return condition()
+
+
+def write_case(directory, name, command):
+    case = {"name": name, "system": {"name": "pendulum"}, "initial": {"q": ["1.1"], "w": ["0.25"]},
+            "T": "1", "steps": [8, 16, 32], "scalar": "double",
+            "discretization": {"kind": "process", "command": command, "order": 1},
+            "claims": ["global-order"]}
+    path = directory / f"{name}.json"
+    path.write_text(json.dumps(case))
+    return path
+
+
+# mode, answers before the fault, what the message must say
+FAULTS = [
+    ("decline", 0, r"the greeting .*it declined: this map steps the harmonic oscillator only"),
+    ("hang-greeting", 0, r"the greeting .*no answer within 2 s \(--process-timeout\)"),
+    ("hang", 3, r"request 4 \{\"h\".*no answer within 2 s"),
+    ("exit", 2, r"request 3 .*it exited with status 3; its standard error ended with: fault.py: cannot go on"),
+    ("garbage", 1, r"request 2 .*it answered a line that is not JSON: hello"),
+    ("dimension", 0, r"request 1 .*expected \"q\": an array of 1 decimal strings"),
+    ("digits", 0, r"request 1 .*q\[0\] = \"1\.1\d*\" has \d+ significant digits, and the greeting asked for 17"),
+    ("number", 0, r"request 1 .*q\[0\] is 1\.1\d*, not a decimal string"),
+    ("error", 5, r"request 6 .*it answered with an error: step size too large"),
+    ("flood", 0, r"request 1 .*a line longer than 1048576 characters"),
+]
+
+
+def main(argv):
+    if len(argv) != 3:
+        print(__doc__, file=sys.stderr)
+        return 2
+    vivv, work = argv[1], pathlib.Path(argv[2])
+    work.mkdir(parents=True, exist_ok=True)
+    problems = []
+
+    # The survivor search finds a process that carries the marker (its negative control).
+    marker = f"vivv-process-test-{uuid.uuid4().hex}"
+    planted = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)", marker])
+    if not wait_for(lambda: survivors(marker), 5):
+        problems.append("the survivor search did not find a process planted for it")
+    planted.kill()
+    planted.wait()
+
+    def run(args, expected_exit, pattern, name, within):
+        out = work / name
+        started = time.monotonic()
+        result = subprocess.run([vivv, "run", *args, "--out", str(out), "--quiet"], capture_output=True, text=True,
+                                timeout=120)
+        elapsed = time.monotonic() - started
+        message = result.stdout + result.stderr
+        if result.returncode != expected_exit:
+            problems.append(f"{name}: exit {result.returncode}, expected {expected_exit}: {message.strip()[:500]}")
+        elif not re.search(pattern, message):
+            problems.append(f"{name}: the message does not match '{pattern}': {message.strip()[:800]}")
+        if elapsed > within:
+            problems.append(f"{name}: took {elapsed:.1f} s, more than {within} s")
+        if (out / "report.json").exists():
+            problems.append(f"{name}: a report was written for bad input")
+        print(f"{name}: exit {result.returncode} in {elapsed:.1f} s")
+
+    for mode, good, pattern in FAULTS:
+        marker = f"vivv-process-test-{uuid.uuid4().hex}"
+        case = write_case(work, f"fault-{mode}", [str(FAULT), mode, str(good), marker])
+        run([str(case), "--allow-process", "--process-timeout", str(TIMEOUT)], 2,
+            r"fault\.py " + mode + r".* \(in .*\), " + pattern, mode, TIMEOUT + 10)
+        if not wait_for(lambda: not survivors(marker), 3):
+            problems.append(f"{mode}: processes of the map program survived vivv: {survivors(marker)}")
+
+    # Not allowed, not found, a relative program in the case file's folder.
+    case = write_case(work, "not-allowed", [str(FAULT), "none"])
+    run([str(case)], 2, r"discretization\.command.*fault\.py none.*vivv run --allow-process", "not-allowed", 10)
+    case = write_case(work, "not-found", ["vivv-no-such-program", "x"])
+    run([str(case), "--allow-process"], 2, r"the map program 'vivv-no-such-program' is not on PATH", "not-found", 10)
+    run([str(HERE / "process" / "relative-program-declines.json"), "--allow-process"], 2,
+        r"'\./fault\.py decline' \(in .*tests/process\), the greeting .*declined", "relative", 10)
+    run(["--allow-process", "--process-timeout", "0"], 2, r"--process-timeout: expected the seconds", "timeout-0", 10)
+
+    # Ended by a signal while the program hangs: vivv alone, and the parent of --jobs workers.
+    for sig, jobs in ((signal.SIGINT, 1), (signal.SIGTERM, 1), (signal.SIGTERM, 2), (signal.SIGINT, 2)):
+        marker = f"vivv-process-test-{uuid.uuid4().hex}"
+        cases = [write_case(work, f"signal-{k}", [str(FAULT), "hang", "1", marker]) for k in range(2)]
+        name = f"{signal.Signals(sig).name} --jobs {jobs}"
+        process = subprocess.Popen([vivv, "run", *map(str, cases), "--out", str(work / "signal"), "--quiet",
+                                    "--allow-process", "--process-timeout", "60", "--jobs", str(jobs)],
+                                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        expected = jobs  # one hanging program per running case
+        if not wait_for(lambda: len(survivors(marker)) >= expected, 20):
+            problems.append(f"{name}: the map programs' grandchildren never appeared")
+        process.send_signal(sig)
+        try:
+            process.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            problems.append(f"{name}: vivv did not end within 10 s of the signal")
+        if not wait_for(lambda: not survivors(marker), 3):
+            problems.append(f"{name}: processes survived vivv: {survivors(marker)}")
+            for pid in survivors(marker):
+                os.kill(pid, signal.SIGKILL)
+        print(f"{name}: vivv ended with {process.returncode}")
+
+    # A --max-seconds budget that runs out while the program hangs.
+    marker = f"vivv-process-test-{uuid.uuid4().hex}"
+    case = write_case(work, "budget", [str(FAULT), "hang", "1", marker])
+    run([str(case), "--allow-process", "--process-timeout", "60", "--max-seconds", "2"], 2,
+        r"ran past its budget of 2 s \(--max-seconds\)", "budget", 10)
+    if not wait_for(lambda: not survivors(marker), 3):
+        problems.append(f"budget: processes survived vivv: {survivors(marker)}")
+
+    for problem in problems:
+        print(problem, file=sys.stderr)
+    if not problems:
+        print(f"{len(FAULTS)} faults, 4 signals and a budget: exit 2 or ended, no survivors")
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
