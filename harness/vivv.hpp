@@ -21,7 +21,12 @@
 //
 //   vivv::Run run = vivv::run({"cases/my-method.json"});        // every claim, as vivv run
 //   vivv::write_reports(run, "vivv-report");                    // report.json, .html, junit.xml
+//   vivv::print_table(std::cout, run);                          // the console table of vivv run
 //   EXPECT_TRUE(vivv::check(run)) ;                             // with <vivv/gtest.hpp>
+//
+// Registering is idempotent: the same name registered again with the same type, order and value
+// (an empty struct is always the same value) is a no-op, so registration may sit in a test
+// fixture's SetUp or in each TEST; the same name for something else is refused.
 //
 // Bad input throws, where `vivv run` exits 2: a malformed case, a name nobody registered or a
 // non-separable Lagrangian for a map as vivv::CaseError (naming the file and the field); a step
@@ -31,9 +36,15 @@
 #pragma once
 
 #include <array>
+#include <concepts>
+#include <functional>
 #include <memory>
+#include <optional>
+#include <ostream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <typeindex>
 #include <utility>
 #include <vector>
 
@@ -48,7 +59,8 @@ namespace vivv {
 
 // Registers `method` under `name`, with the order r its authors state (|Φ_h − F_h| = O(h^{r+1})),
 // for every scalar and dimension vivv runs: MPFR for 1 to 4 coordinates, double, long double
-// and float128 for 1 and 2. A name registered twice, or one of odeint's, is refused.
+// and float128 for 1 and 2. The same method again under its name is a no-op; another under a
+// taken name, or one of odeint's, is refused.
 template <class Method>
 void register_map(const std::string& name, int order, Method method = {});
 
@@ -84,8 +96,28 @@ struct Run {
   nlohmann::json report;
 };
 
-// Reads and runs each case file, as `vivv run FILE ...` does (the cases' own digits and sweeps).
-Run run(const std::vector<std::string>& case_files);
+// The options of `vivv run` a program can give vivv::run (harness/main.cpp's --help says more).
+struct RunOptions {
+  std::optional<int> digits;          // --digits: MPFR digits for every case (20 … 1000)
+  std::optional<std::string> scalar;  // --scalar: double, "long double", float128 or mpfr
+  bool refine = false;                // --refine: halve h until every fitted order settles
+  // --jobs: cases at once, each in a worker process forked from this one (MPFR's precision is
+  // process-wide); Run::results then stays empty and Run::report holds every case.
+  int jobs = 1;
+  // --max-seconds: each case's budget of wall time; a case past it is killed in its worker
+  // process and vivv::run throws std::runtime_error naming it (a budget implies workers).
+  std::optional<int> max_seconds;
+  bool allow_process = false;   // --allow-process: cases may start the programs they name
+  double process_timeout = 30;  // --process-timeout: seconds for each answer of such a program
+  std::function<void(const std::string&)> progress;  // progress lines, as --progress prints them
+};
+
+// Reads and runs each case file, as `vivv run FILE ... [options]` does.
+Run run(const std::vector<std::string>& case_files, const RunOptions& options = {});
+
+// The console table `vivv run` prints: one row per claim, the explanations of those that do not
+// pass, the summary line.
+void print_table(std::ostream& out, const Run& run);
 
 // Writes DIR/report.json, report.html and junit.xml; the paths written.
 std::vector<std::string> write_reports(const Run& run, const std::string& directory);
@@ -93,13 +125,61 @@ std::vector<std::string> write_reports(const Run& run, const std::string& direct
 // Every claim of the run holds (pass, or xfail where the case expects a failure).
 bool holds(const Run& run);
 
-// One line per claim that does not hold: case, claim, verdict and why.
+// One line per claim that does not hold: case, claim, verdict and why (from the report, so also
+// for a run in workers).
 std::string failures(const Run& run);
 
 // ---- definitions ----
 
 
 namespace detail {
+
+// What was registered under each name, so that registering the same thing again is a no-op.
+struct Registration {
+  std::string kind, name;
+  std::type_index type;
+  int order;
+  std::shared_ptr<const void> value;
+};
+
+inline std::vector<Registration>& registrations() {
+  static std::vector<Registration> all;
+  return all;
+}
+
+// Whether `name` was registered as `kind` before with the same type, order and value (then the
+// registration is a no-op); throws when the name was registered as something else.
+template <class X>
+bool registered_before(const std::string& kind, const std::string& name, const X& value,
+                       int order) {
+  for (const auto& earlier : registrations()) {
+    if (earlier.kind != kind || earlier.name != name) continue;
+    std::string differs;
+    if (earlier.type != std::type_index(typeid(X)))
+      differs = "as another type";
+    else if (earlier.order != order)
+      differs = "with order " + std::to_string(earlier.order);
+    else if constexpr (std::is_empty_v<X>)
+      return true;
+    else if constexpr (std::equality_comparable<X>) {
+      if (*static_cast<const X*>(earlier.value.get()) == value) return true;
+      differs = "with another value of its type";
+    } else {
+      differs =
+          "with a value of a type without operator==, which vivv cannot compare with this one";
+    }
+    throw std::invalid_argument(kind + ": '" + name + "' is already registered " + differs +
+                                "; give this one a name of its own");
+  }
+  return false;
+}
+
+template <class X>
+void remember_registration(const std::string& kind, const std::string& name, const X& value,
+                           int order) {
+  registrations().push_back(
+      {kind, name, std::type_index(typeid(X)), order, std::make_shared<const X>(value)});
+}
 
 // A name not yet taken by a catalogue system, a registered one or a map.
 inline void check_new_name(const std::string& what, const std::string& name, const std::vector<std::string>& taken) {
@@ -140,6 +220,7 @@ V record_rule(const Rule& rule, const std::vector<V>& qb, const std::vector<V>& 
 
 template <class Method>
 void register_map(const std::string& name, int order, Method method) {
+  if (detail::registered_before("register_map", name, method, order)) return;
   std::vector<std::string> taken;
   for (const auto& registered : registered_maps()) taken.push_back(registered.name);
   for (const auto& stepper : odeint_steppers()) taken.push_back(stepper.name);
@@ -162,12 +243,14 @@ void register_map(const std::string& name, int order, Method method) {
   add.template operator()<quad, 1>();
   add.template operator()<quad, 2>();
   registered_maps().push_back(info);
+  detail::remember_registration("register_map", name, method, order);
 }
 
 template <class System>
 void register_system(const std::string& name, System system) {
   constexpr int n = System::dimension;
   static_assert(n >= 1 && n <= 4, "vivv runs systems of 1 to 4 coordinates");
+  if (detail::registered_before("register_system", name, system, 0)) return;
   detail::check_new_name("register_system", name, system_names());
   auto recorder = detail::per_scalar<SystemRecorder>([&]<class T>() -> SystemRecorder<T> {
     return [system](const TapeVector<T>& q, const TapeVector<T>& w,
@@ -181,10 +264,12 @@ void register_system(const std::string& name, System system) {
     };
   });
   registered_systems().push_back({name, n, System::parameters(), recorder});
+  detail::remember_registration("register_system", name, system, 0);
 }
 
 template <class Rule>
 void register_discrete_lagrangian(const std::string& name, int order, Rule rule) {
+  if (detail::registered_before("register_discrete_lagrangian", name, rule, order)) return;
   std::vector<std::string> taken;
   for (const auto& registered : registered_discrete_lagrangians()) taken.push_back(registered.name);
   detail::check_new_name("register_discrete_lagrangian", name, taken);
@@ -201,6 +286,7 @@ void register_discrete_lagrangian(const std::string& name, int order, Rule rule)
     };
   });
   registered_discrete_lagrangians().push_back({name, order, recorder});
+  detail::remember_registration("register_discrete_lagrangian", name, rule, order);
 }
 
 }  // namespace vivv

@@ -97,6 +97,8 @@ def main(argv):
             problems.append(f"{name}: exit {result.returncode}, expected {expected_exit}: {message.strip()[:500]}")
         elif not re.search(pattern, message):
             problems.append(f"{name}: the message does not match '{pattern}': {message.strip()[:800]}")
+        if re.search(r"AddressSanitizer|LeakSanitizer|runtime error:", message):
+            problems.append(f"{name}: a sanitizer report: {message.strip()[-800:]}")
         if elapsed > within:
             problems.append(f"{name}: took {elapsed:.1f} s, more than {within} s")
         if (out / "report.json").exists():

@@ -82,4 +82,9 @@ echo "$cases negative, inconclusive and bad cases: the expected exit codes, no s
 python3 "$source_dir/tests/fuzz/fuzz_inputs.py" "$vivv" "$source_dir/tests/fuzz/corpus" \
   "$work/fuzz" --mutations 8 --seed 2 > "$work/fuzz.log" 2>&1 || { tail -40 "$work/fuzz.log"; exit 1; }
 tail -1 "$work/fuzz.log"
-echo "sanitizers clean: the default suite, the test cases and the fuzz corpus"
+# The process protocol's faults and signals (tests/check_process_maps.py): every exit code and
+# message as ctest expects, no surviving process, and no sanitizer report in vivv's output.
+python3 "$source_dir/tests/check_process_maps.py" "$vivv" "$work/process" > "$work/process.log" 2>&1 ||
+  { tail -40 "$work/process.log"; exit 1; }
+tail -1 "$work/process.log"
+echo "sanitizers clean: the default suite, the test cases, the fuzz corpus and the process protocol's faults"

@@ -1,9 +1,12 @@
 // The user's test suite: vivv's claims on the user's own integrator, as GoogleTest assertions.
+#include "split_kick.hpp"
+
+#include <sstream>
+#include <stdexcept>
 #include <vivv/gtest.hpp>
 #include <vivv/vivv.hpp>
 
 #include "quartic.hpp"
-#include "split_kick.hpp"
 
 namespace {
 
@@ -56,7 +59,8 @@ TEST_F(SplitKickTest, ADoubleLiteralIsFlaggedAsAPrecisionLeak) {
 // T of many periods its energy error stays bounded (energy-behaviour needs 4 returns of the
 // motion: the short cases do not name it).
 TEST_F(SplitKickTest, AUserRuleOnAUserSystemKeepsItsPromises) {
-  const vivv::Run run = vivv::run({cases + "/gauss-two-line-quartic.json", cases + "/gauss-two-line-quartic-float128.json",
+  const vivv::Run run = vivv::run({cases + "/gauss-two-line-quartic.json",
+                                   cases + "/gauss-two-line-quartic-float128.json",
                                    cases + "/split-kick-quartic-double.json",
                                    cases + "/split-kick-quartic-energy-double.json"});
   EXPECT_TRUE(vivv::check(run));
@@ -67,6 +71,39 @@ TEST_F(SplitKickTest, AUserRuleOnAUserSystemKeepsItsPromises) {
   EXPECT_EQ(verdict_of(run, "energy-behaviour"), "pass");
   EXPECT_EQ(vivv::write_reports(run, "report-user-types").size(),
             4u);  // report.json, report.html, junit.xml, report.csv
+}
+
+// Registering again is harmless: the same method under its name does nothing; another type
+// under a taken name is refused.
+TEST_F(SplitKickTest, RegisteringTheSameMethodAgainIsHarmless) {
+  EXPECT_NO_THROW(vivv::register_map<SplitKick<TenthWeights>>("split-kick", 2));
+  EXPECT_NO_THROW(vivv::register_system<QuarticOscillator>("quartic-oscillator"));
+  EXPECT_THROW(vivv::register_map<SplitKick<TenthLiteralWeights>>("split-kick", 2),
+               std::invalid_argument);
+  EXPECT_THROW(vivv::register_map<SplitKick<TenthWeights>>("split-kick", 4), std::invalid_argument);
+}
+
+// The options of vivv run: two cases in two worker processes; the report holds both, in their
+// order, and the console table prints them. A scalar override a case cannot take is refused
+// before anything runs.
+TEST_F(SplitKickTest, RunsWithTheOptionsOfTheCommandLine) {
+  vivv::RunOptions options;
+  options.jobs = 2;
+  options.max_seconds = 300;
+  const vivv::Run run = vivv::run(
+      {cases + "/split-kick-quartic-double.json", cases + "/gauss-two-line-quartic-float128.json"},
+      options);
+  EXPECT_TRUE(vivv::check(run));
+  EXPECT_TRUE(run.results.empty());
+  ASSERT_EQ(run.report["cases"].size(), 2u);
+  EXPECT_EQ(run.report.at("cases").at(0).at("precision").at("scalar"), "double");
+  EXPECT_EQ(run.report.at("cases").at(1).at("precision").at("scalar"), "float128");
+  options.scalar = "double";
+  EXPECT_THROW(vivv::run({cases + "/gauss-two-line-quartic.json"}, options), vivv::CaseError);
+  std::ostringstream table;
+  vivv::print_table(table, run);
+  EXPECT_NE(table.str().find("split-kick-quartic-double"), std::string::npos) << table.str();
+  EXPECT_NE(table.str().find("claims: "), std::string::npos) << table.str();
 }
 
 // A case naming a map nobody registered is bad input.
