@@ -47,6 +47,11 @@ shared_map_trajectory(const CaseContext<System>& context, const typename System:
     kept = std::make_shared<const std::vector<State<typename System::Scalar, System::dimension>>>(
         map_trajectory(context, h, N));
     context.run_costs[N] = meter.cost();
+    // A map in another program evaluates its own L (or forces), which vivv does not see: what
+    // vivv counted are its own conversions between w and p, not the method's cost. Recorded as 0
+    // (no work-precision point by evaluations; its wall time is the program's too).
+    if (context.spec.discretization.kind == "process")
+      context.run_costs[N].lagrangian_evaluations = 0;
   }
   return kept;
 }
