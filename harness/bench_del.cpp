@@ -9,41 +9,23 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 
 #include "bench/counted_system.hpp"
 #include "cases/systems.hpp"
 #include "core/del_evolution.hpp"
 #include "core/lagrangian.hpp"
+#include "harness/bench_timing.hpp"
 
 namespace vivv {
 namespace {
 
 constexpr double target_ratio = 2;
 
-// Keeps the compiler from dropping a computation whose result is unused (as Google
-// Benchmark's DoNotOptimize): the object must exist in memory.
-template <class V>
-void keep(V& value) {
-  asm volatile("" : : "r"(&value) : "memory");
-}
-
-// Nanoseconds per call of `f`: the best of three batches of at least 0.1 s each.
+// Per call of `f`, in the unit of this benchmark's table.
 template <class F>
 double nanoseconds_per_call(F&& f) {
-  using Clock = std::chrono::steady_clock;
-  double best = 1e300;
-  for (int batch = 0; batch < 3; ++batch) {
-    long calls = 0;
-    const Clock::time_point start = Clock::now();
-    double elapsed = 0;
-    do {
-      f();
-      ++calls;
-      elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    } while (elapsed < 0.1);
-    best = std::min(best, elapsed * 1e9 / static_cast<double>(calls));
-  }
-  return best;
+  return 1e9 * seconds_per_call(std::forward<F>(f), 0.1);
 }
 
 // q_{k−1} = (1, 1/2, ...), q_k = q_{k−1} + (1/100, 2/100, ...), h = 1/10.

@@ -10,9 +10,11 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 
 #include "cases/systems.hpp"
 #include "core/del_evolution.hpp"
+#include "harness/bench_timing.hpp"
 #include "harness/process_map.hpp"
 
 namespace vivv {
@@ -20,28 +22,10 @@ namespace {
 
 constexpr double target_microseconds = 50;
 
-template <class V>
-void keep(V& value) {
-  asm volatile("" : : "r"(&value) : "memory");
-}
-
-// Microseconds per call of `f`: the best of three batches of at least 0.2 s each.
+// Per call of `f`, in the unit of this benchmark's table.
 template <class F>
 double microseconds_per_call(F&& f) {
-  using Clock = std::chrono::steady_clock;
-  double best = 1e300;
-  for (int batch = 0; batch < 3; ++batch) {
-    long calls = 0;
-    const Clock::time_point start = Clock::now();
-    double elapsed = 0;
-    do {
-      f();
-      ++calls;
-      elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    } while (elapsed < 0.2);
-    best = std::min(best, elapsed * 1e6 / static_cast<double>(calls));
-  }
-  return best;
+  return 1e6 * seconds_per_call(std::forward<F>(f), 0.2);
 }
 
 template <class T>

@@ -145,6 +145,22 @@ int parse_integer(const std::string& flag, const std::string& text, int low, int
                  std::to_string(high) + "], got '" + text + "'");
 }
 
+// A decimal number for `flag` that `allowed` accepts; BadInput saying what was `expected`.
+template <class Allowed>
+double parse_real(const std::string& flag, const std::string& text, Allowed allowed,
+                  const std::string& expected) {
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || !allowed(value))
+    throw BadInput(flag + ": expected " + expected + ", got '" + text.substr(0, 40) + "'");
+  return value;
+}
+
 Shard parse_shard(const std::string& text) {
   const auto slash = text.find('/');
   if (slash != std::string::npos) {
@@ -192,41 +208,18 @@ RunOptions parse_run_options(const std::vector<std::string>& args) {
       options.keep_going = true;
     else if (arg == "--baseline")
       options.baseline = value();
-    else if (arg == "--baseline-tolerance") {
-      const std::string text = value();
-      std::size_t used = 0;
-      double tolerance = 0;
-      try {
-        tolerance = std::stod(text, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
+    else if (arg == "--baseline-tolerance")
       // Above 0 (a constant equal to the last digit would regress) and at most 10 (×11).
-      if (used != text.size() || !(tolerance > 0 && tolerance <= 10))
-        throw BadInput(
-            "--baseline-tolerance: expected the allowed growth of the error constant as a fraction "
-            "in (0, "
-            "10] (0.1 allows 10 %), got '" +
-            text + "'");
-      options.baseline_tolerance = tolerance;
-    } else if (arg == "--allow-process")
+      options.baseline_tolerance = parse_real(
+          arg, value(), [](double x) { return x > 0 && x <= 10; },
+          "the allowed growth of the error constant as a fraction in (0, 10] (0.1 allows 10 %)");
+    else if (arg == "--allow-process")
       options.allow_process = true;
-    else if (arg == "--process-timeout") {
-      const std::string text = value();
-      std::size_t used = 0;
-      double seconds = 0;
-      try {
-        seconds = std::stod(text, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != text.size() || !(seconds >= 0.1 && seconds <= 3600))
-        throw BadInput(
-            "--process-timeout: expected the seconds a map program may take to answer, from 0.1 to "
-            "3600, got '" +
-            text.substr(0, 40) + "'");
-      options.process_timeout = seconds;
-    } else if (arg.rfind("--", 0) == 0)
+    else if (arg == "--process-timeout")
+      options.process_timeout = parse_real(
+          arg, value(), [](double x) { return x >= 0.1 && x <= 3600; },
+          "the seconds a map program may take to answer, from 0.1 to 3600");
+    else if (arg.rfind("--", 0) == 0)
       throw BadInput("unknown option '" + arg + "'");
     else options.case_files.push_back(arg);
   }
