@@ -12,7 +12,9 @@
 // a second instance of the program, started at D₂ = 2D + 10 digits: with the step
 // δ = 10^(−⌈D₂/3⌉)·max(1, |y_j|), the difference's truncation (δ²) and rounding (10^−D₂/δ) are
 // both about 10^(−2D₂/3) = 10^(−(4D + 20)/3), far below the working precision's 10^−D, so
-// JᵀΩJ − Ω measures the map and not the differences.
+// JᵀΩJ − Ω measures the map and not the differences. That holds only if the program really
+// computes with D₂ digits: the first Jacobian and every eighth are computed again at ten times
+// the width, and a change beyond ε·|J| ends the case naming the program (padded digits).
 #pragma once
 
 #include <algorithm>
@@ -73,33 +75,65 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     const Vector<T, n> p = momentum(system_, x.q, x.w);
     std::array<std::string, 2 * n> y;
     for (int i = 0; i < n; ++i) y[i] = to_decimal<T>(x.q[i]), y[n + i] = to_decimal<T>(p[i]);
-    const std::string step = to_decimal<T>(h);
+    const std::string step = to_decimal<T>(h), epsilon_of_T = to_decimal<T>(epsilon<T>());
+    // The first Jacobian and every `recheck`-th one are computed again at 10 times the width: a
+    // program computing at the digits it was asked for gives the same matrix to about
+    // 10^(−(4D+14)/3) (the width's truncation grows 100 times), far below ε of the working
+    // precision; one that computes in fewer digits and pads its answers differs by its own
+    // rounding over the width, and the Jacobian would measure that instead of the map.
+    const bool check = jacobians_++ % recheck == 0;
     std::array<std::array<std::string, 2 * n>, 2 * n> columns;  // ∂(q', p')/∂y_j, as decimals
     {
       PrecisionGuard guard(fine_digits() + 10);
       using R = mpfr_real;
       using std::abs, std::max, std::pow;
-      for (int j = 0; j < 2 * n; ++j) {
-        const R yj = from_decimal<R>(y[j]);
-        const R delta = pow(R(10), -difference_exponent()) * max(R(1), R(abs(yj)));
-        std::array<std::array<R, 2 * n>, 2> images;
-        for (int side = 0; side < 2; ++side) {
-          nlohmann::json request = {
-              {"h", step}, {"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
-          for (int i = 0; i < 2 * n; ++i) {
-            const std::string value =
-                i == j ? to_decimal<R>(side == 0 ? R(yj + delta) : R(yj - delta)) : y[i];
-            request[i < n ? "q" : "p"].push_back(value);
+      // Central differences at width 10^(−exponent)·max(1, |y_j|), column by column.
+      auto differences = [&](int exponent) {
+        std::array<std::array<R, 2 * n>, 2 * n> result;
+        for (int j = 0; j < 2 * n; ++j) {
+          const R yj = from_decimal<R>(y[j]);
+          const R delta = pow(R(10), -exponent) * max(R(1), R(abs(yj)));
+          std::array<std::array<R, 2 * n>, 2> images;
+          for (int side = 0; side < 2; ++side) {
+            nlohmann::json request = {
+                {"h", step}, {"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
+            for (int i = 0; i < 2 * n; ++i)
+              request[i < n ? "q" : "p"].push_back(
+                  i == j ? to_decimal<R>(side == 0 ? R(yj + delta) : R(yj - delta)) : y[i]);
+            const nlohmann::json answer = fine_->request(request);
+            for (int i = 0; i < n; ++i) {
+              images[side][i] = number<R>(*fine_, answer, "q", i, fine_digits());
+              images[side][n + i] = number<R>(*fine_, answer, "p", i, fine_digits());
+            }
           }
-          const nlohmann::json answer = fine_->request(request);
-          for (int i = 0; i < n; ++i) {
-            images[side][i] = number<R>(*fine_, answer, "q", i, fine_digits());
-            images[side][n + i] = number<R>(*fine_, answer, "p", i, fine_digits());
-          }
+          for (int i = 0; i < 2 * n; ++i)
+            result[j][i] = (images[0][i] - images[1][i]) / (2 * delta);
         }
-        for (int i = 0; i < 2 * n; ++i)
-          columns[j][i] = to_decimal<R>(R((images[0][i] - images[1][i]) / (2 * delta)));
+        return result;
+      };
+      const auto narrow = differences(difference_exponent());
+      if (check) {
+        const auto wide = differences(difference_exponent() - 1);
+        R largest = 1, change = 0;
+        for (int j = 0; j < 2 * n; ++j)
+          for (int i = 0; i < 2 * n; ++i)
+            largest = max(largest, R(abs(narrow[j][i]))),
+            change = max(change, R(abs(narrow[j][i] - wide[j][i])));
+        if (!(change <= from_decimal<R>(epsilon_of_T) * largest))
+          fine_->fail_answer("its Jacobian by central differences changes by " +
+                             to_decimal<R>(change, 3) + " between widths 10^-" +
+                             std::to_string(difference_exponent()) + " and 10^-" +
+                             std::to_string(difference_exponent() - 1) +
+                             ", more than the working precision's epsilon " +
+                             to_decimal<R>(from_decimal<R>(epsilon_of_T), 3) +
+                             " times |J| = " + to_decimal<R>(largest, 3) +
+                             ": it does not compute with the " + std::to_string(fine_digits()) +
+                             " digits its greeting asked for (a program that cannot should decline "
+                             "a greeting with more "
+                             "digits than it has)");
       }
+      for (int j = 0; j < 2 * n; ++j)
+        for (int i = 0; i < 2 * n; ++i) columns[j][i] = to_decimal<R>(narrow[j][i]);
     }
     Matrix<T, 2 * n, 2 * n> jacobian;
     for (int i = 0; i < 2 * n; ++i)
@@ -156,6 +190,8 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   int digits_;
   std::unique_ptr<MapProcess> process_;
   mutable std::unique_ptr<MapProcess> fine_;  // started by the first Jacobian
+  mutable long jacobians_ = 0;                // Jacobians computed so far
+  static constexpr long recheck = 8;
 };
 
 }  // namespace vivv

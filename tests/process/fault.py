@@ -5,7 +5,7 @@ argument names, after answering `good` requests properly (tests/check_process_ma
 usage: fault.py MODE [GOOD] [MARKER]
 
 MODE: none (q' = q + h·p, p' = p), euler (explicit Euler on the harmonic oscillator), decline, hang-greeting, hang, exit, garbage,
-dimension, digits, number, error, flood. With MARKER, it first starts a grandchild that sleeps
+dimension, digits, number, padded (computes in double, writes D digits), error, flood. With MARKER, it first starts a grandchild that sleeps
 for an hour with MARKER on its command line, so that a test can look for survivors.
 """
 import decimal
@@ -60,6 +60,9 @@ for count, line in enumerate(sys.stdin):
             answer = {"q": [repr(float(x)) for x in q], "p": [repr(float(x)) for x in p]}
         if mode == "number":
             answer = {"q": [float(x) for x in q], "p": write(p)}
+        if mode == "padded":  # computes in double and writes the double's digits as if they were D
+            q = [float(qi) + float(h) * float(pi) for qi, pi in zip(request["q"], request["p"])]
+            answer = {"q": [f"{x:.{digits - 1}e}" for x in q], "p": write(p)}
         if mode == "error":
             answer = {"error": "step size too large"}
         if mode == "flood":
