@@ -9,7 +9,6 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <utility>
 
 #include "bench/counted_system.hpp"
 #include "cases/systems.hpp"
@@ -21,12 +20,6 @@ namespace vivv {
 namespace {
 
 constexpr double target_ratio = 2;
-
-// Per call of `f`, in the unit of this benchmark's table.
-template <class F>
-double nanoseconds_per_call(F&& f) {
-  return 1e9 * seconds_per_call(std::forward<F>(f), 0.1);
-}
 
 // q_{k−1} = (1, 1/2, ...), q_k = q_{k−1} + (1/100, 2/100, ...), h = 1/10.
 template <class System>
@@ -47,21 +40,32 @@ nlohmann::json measure(const char* scalar) {
 
   Counted<System>::evaluations = 0;
   auto [q2, report] = del_step(system, scheme, q0, q1, h);
-  if (!report.converged) throw std::runtime_error(std::string("bench del: the DEL step of ") + System::name +
-                                                  " in " + scalar + " did not converge");
+  if (!report.converged)
+    throw std::runtime_error(std::string("bench del: the DEL step of ") + System::name + " in " +
+                             scalar + " did not converge");
   const long evaluations = Counted<System>::evaluations;
-  const double step_ns = nanoseconds_per_call([&] {
-    auto step = del_step(system, scheme, q0, q1, h);
-    keep(step);
-  });
-  const double evaluation_ns = nanoseconds_per_call([&] {
-    auto derivatives = lagrangian_derivatives(system, q1, w);
-    keep(derivatives);
-  });
+  const double step_ns = 1e9 * seconds_per_call(
+                                   [&] {
+                                     auto step = del_step(system, scheme, q0, q1, h);
+                                     keep(step);
+                                   },
+                                   0.1);
+  const double evaluation_ns = 1e9 * seconds_per_call(
+                                         [&] {
+                                           auto derivatives = lagrangian_derivatives(system, q1, w);
+                                           keep(derivatives);
+                                         },
+                                         0.1);
   const double ratio = step_ns / (static_cast<double>(evaluations) * evaluation_ns);
-  return {{"system", System::name},  {"dimension", n},      {"scalar", scalar},
-          {"bits", precision_bits<T>()}, {"evaluations", evaluations}, {"newton_iterations", report.iterations},
-          {"step_ns", step_ns},      {"evaluation_ns", evaluation_ns}, {"ratio", ratio},
+  return {{"system", System::name},
+          {"dimension", n},
+          {"scalar", scalar},
+          {"bits", precision_bits<T>()},
+          {"evaluations", evaluations},
+          {"newton_iterations", report.iterations},
+          {"step_ns", step_ns},
+          {"evaluation_ns", evaluation_ns},
+          {"ratio", ratio},
           {"within_target", ratio <= target_ratio}};
 }
 
@@ -80,8 +84,8 @@ int run_del_benchmark(std::ostream& out) {
   }
   out << "one midpoint DEL step against the L evaluations (value, gradient, Hessian) it needs\n";
   char line[200];
-  std::snprintf(line, sizeof line, "%-16s %-9s %5s %6s %8s %12s %14s %7s\n", "system", "scalar", "bits", "evals",
-                "newton", "step (ns)", "one eval (ns)", "ratio");
+  std::snprintf(line, sizeof line, "%-16s %-9s %5s %6s %8s %12s %14s %7s\n", "system", "scalar",
+                "bits", "evals", "newton", "step (ns)", "one eval (ns)", "ratio");
   out << line;
   for (const auto& row : rows) {
     std::snprintf(

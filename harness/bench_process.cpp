@@ -10,7 +10,6 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <utility>
 
 #include "cases/systems.hpp"
 #include "core/del_evolution.hpp"
@@ -22,12 +21,6 @@ namespace {
 
 constexpr double target_microseconds = 50;
 
-// Per call of `f`, in the unit of this benchmark's table.
-template <class F>
-double microseconds_per_call(F&& f) {
-  return 1e6 * seconds_per_call(std::forward<F>(f), 0.2);
-}
-
 template <class T>
 nlohmann::json measure(const char* scalar, const std::string& vivv_path) {
   const Pendulum<T> system;
@@ -38,28 +31,34 @@ nlohmann::json measure(const char* scalar, const std::string& vivv_path) {
   options.command = {vivv_path, "map-echo"};
   options.directory = std::filesystem::current_path().string();
   const ProcessMap<Pendulum<T>> map(system, options, nlohmann::json{{"name", "pendulum"}}, 1);
-  const double process_us = microseconds_per_call([&] {
-    State<T, 1> next = map.step(x, h);
-    keep(next);
-  });
+  const double process_us = 1e6 * seconds_per_call(
+                                      [&] {
+                                        State<T, 1> next = map.step(x, h);
+                                        keep(next);
+                                      },
+                                      0.2);
   // Of that, the trip itself: one request already written as JSON, through the pipes and back.
   MapProcess echo(
       options, {{"protocol", map_protocol}, {"digits", round_trip_digits<T>()}, {"dimension", 1}});
   const nlohmann::json request = {
       {"h", to_decimal<T>(h)}, {"q", {to_decimal<T>(x.q[0])}}, {"p", {to_decimal<T>(x.w[0])}}};
-  const double trip_us = microseconds_per_call([&] {
-    nlohmann::json answer = echo.request(request);
-    keep(answer);
-  });
+  const double trip_us = 1e6 * seconds_per_call(
+                                   [&] {
+                                     nlohmann::json answer = echo.request(request);
+                                     keep(answer);
+                                   },
+                                   0.2);
   QxQDiscretization<T> midpoint;
   midpoint.rule = QxQRule::midpoint;
   const DelScheme<T> scheme = matched_scheme(midpoint);
   Vector<T, 1> q0, q1;
   q0[0] = x.q[0], q1[0] = x.q[0] + h * x.w[0];
-  const double del_us = microseconds_per_call([&] {
-    auto step = del_step(system, scheme, q0, q1, h);
-    keep(step);
-  });
+  const double del_us = 1e6 * seconds_per_call(
+                                  [&] {
+                                    auto step = del_step(system, scheme, q0, q1, h);
+                                    keep(step);
+                                  },
+                                  0.2);
   return {{"scalar", scalar},
           {"digits", round_trip_digits<T>()},
           {"process_step_us", process_us},

@@ -344,14 +344,10 @@ struct CaseContext {
   // The case's map in another program (kind "process"), started only where the run allows it.
   std::shared_ptr<const OneStepMap<T, n>> make_process_map() const {
     const DiscretizationSpec& d = spec.discretization;
-    std::string command;
-    for (const auto& word : d.command) command += (command.empty() ? "" : " ") + word;
-    if (!d.process_allowed)
-      throw CaseError(
-          spec.file, "discretization.command",
-          "this case runs the program '" + command.substr(0, 200) +
-              "' that it names; vivv starts programs named in case files only when the run "
-              "allows it: vivv run --allow-process");
+    if (!d.process_allowed) {  // a run that did not call permit_process (harness/map_process.hpp)
+      CaseSpec refused = spec;
+      permit_process(refused, false, 0, "vivv run --allow-process");
+    }
     nlohmann::json system_json = spec.source.contains("system") && spec.source["system"].is_object()
                                      ? spec.source["system"]
                                      : nlohmann::json{{"name", spec.system}};

@@ -196,15 +196,8 @@ Run run(const std::vector<std::string>& case_files, const RunOptions& options) {
   for (auto& spec : specs) {
     check_precision_options(spec, options.scalar, options.digits);
     if (options.scalar) spec.scalar = *options.scalar;
-    if (spec.discretization.kind == "process") {
-      if (!options.allow_process)
-        throw CaseError(
-            spec.file, "discretization.command",
-            "this case runs a program that it names; vivv::run starts such programs only with "
-            "RunOptions::allow_process");
-      spec.discretization.process_allowed = true;
-      spec.discretization.process_timeout_seconds = options.process_timeout;
-    }
+    permit_process(spec, options.allow_process, options.process_timeout,
+                   "RunOptions::allow_process");
   }
   std::vector<nlohmann::json> cases;
   if (options.jobs == 1 && !options.max_seconds) {

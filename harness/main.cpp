@@ -565,21 +565,9 @@ int command_run(const std::vector<std::string>& args, const std::string& command
   }
   // The options against every case before any computes: a case they cannot run refuses the run.
   for (const auto& spec : specs) check_precision_options(spec, options.scalar, options.digits);
-  for (auto& spec : specs) {
-    if (spec.discretization.kind != "process") continue;
-    if (!options.allow_process) {
-      std::string command;
-      for (const auto& word : spec.discretization.command)
-        command += (command.empty() ? "" : " ") + word;
-      throw CaseError(
-          spec.file, "discretization.command",
-          "this case runs the program '" + command.substr(0, 200) +
-              "' that it names; vivv starts programs named in case files only when asked to: "
-              "vivv run --allow-process");
-    }
-    spec.discretization.process_allowed = true;
-    spec.discretization.process_timeout_seconds = options.process_timeout;
-  }
+  for (auto& spec : specs)
+    permit_process(spec, options.allow_process, options.process_timeout,
+                   "vivv run --allow-process");
   // Every case file is read and checked above, so that each shard refuses the same bad input;
   // a shard then computes its own positions.
   std::vector<std::size_t> positions;

@@ -115,6 +115,23 @@ std::string shortened(const std::string& text, std::size_t at_most = 300) {
 
 }  // namespace
 
+void permit_process(CaseSpec& spec, bool allowed, double timeout_seconds,
+                    const std::string& how_to_allow) {
+  if (spec.discretization.kind != "process") return;
+  if (!allowed) {
+    std::string command;
+    for (const auto& word : spec.discretization.command)
+      command += (command.empty() ? "" : " ") + word;
+    throw CaseError(
+        spec.file, "discretization.command",
+        "this case runs the program '" + command.substr(0, 200) +
+            "' that it names; vivv starts programs named in case files only when asked to: " +
+            how_to_allow);
+  }
+  spec.discretization.process_allowed = true;
+  spec.discretization.process_timeout_seconds = timeout_seconds;
+}
+
 void end_map_processes() noexcept {
   for (auto& slot : running_groups)
     if (slot != 0) kill(-static_cast<pid_t>(slot), SIGKILL);

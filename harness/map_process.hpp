@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "cases/case_file.hpp"
+
 namespace vivv {
 
 // The protocol's name and version, in the greeting and in its answer.
@@ -73,6 +75,13 @@ class MapProcess {
   std::string last_request_;
   long requests_ = 0;
 };
+
+// What every run does with a case whose discretization is a process (kind "process") before
+// anything computes: lets it start its program with the given timeout when `allowed`, else a
+// CaseError naming the program and `how_to_allow` (the flag, or the library's option). Other
+// kinds are left as they are.
+void permit_process(CaseSpec& spec, bool allowed, double timeout_seconds,
+                    const std::string& how_to_allow);
 
 // Kills the process groups of every running map program (async-signal-safe: for a signal
 // handler, e.g. the --max-seconds budget's, that ends vivv).

@@ -12,6 +12,7 @@ import json
 import os
 import pathlib
 import re
+import shutil
 import signal
 import subprocess
 import sys
@@ -67,9 +68,12 @@ FAULTS = [
     ("number", 0, r"request 1 .*q\[0\] is 1\.1\d*, not a decimal string"),
     ("error", 5, r"request 6 .*it answered with an error: step size too large"),
     # Symplecticity's second instance, asked for 44 digits, computes in double: its Jacobian by
-    # differences changes with the width far beyond epsilon.
-    ("padded", 0, r"request 8 .*changes by .* between widths 10\^-15 and 10\^-14, more than the working "
-                  r"precision's epsilon .*does not compute with the 44 digits"),
+    # differences at width 10^-15 sees no change at all, unlike the one at the coarse width 10^-6.
+    ("padded", 0, r"request 12 .*at width 10\^-15 differs by .* from the one at width 10\^-6 .*does not "
+                  r"compute with the 44 digits"),
+    # ... computes with 25 of the 44 digits: the narrow Jacobian changes with the width beyond epsilon.
+    ("short", 0, r"request 12 .*changes by .* between widths 10\^-15 and 10\^-14, more than the working "
+                 r"precision's epsilon .*does not compute with the 44 digits"),
     ("flood", 0, r"request 1 .*a line longer than 1048576 characters"),
 ]
 
@@ -92,6 +96,7 @@ def main(argv):
 
     def run(args, expected_exit, pattern, name, within):
         out = work / name
+        shutil.rmtree(out, ignore_errors=True)  # a report left by an earlier run is not this one's
         started = time.monotonic()
         result = subprocess.run([vivv, "run", *args, "--out", str(out), "--quiet"], capture_output=True, text=True,
                                 timeout=120)
@@ -111,7 +116,7 @@ def main(argv):
 
     for mode, good, pattern in FAULTS:
         marker = f"vivv-process-test-{uuid.uuid4().hex}"
-        claims = ("symplecticity",) if mode == "padded" else ("global-order",)
+        claims = ("symplecticity",) if mode in ("padded", "short") else ("global-order",)
         case = write_case(work, f"fault-{mode}", [str(FAULT), mode, str(good), marker], claims)
         run([str(case), "--allow-process", "--process-timeout", str(TIMEOUT)], 2,
             r"fault\.py " + mode + r".* \(in .*\), " + pattern, mode, TIMEOUT + 10)

@@ -5,7 +5,8 @@ argument names, after answering `good` requests properly (tests/check_process_ma
 usage: fault.py MODE [GOOD] [MARKER]
 
 MODE: none (q' = q + h·p, p' = p), euler (explicit Euler on the harmonic oscillator), decline, hang-greeting, hang, exit, garbage,
-dimension, digits, number, padded (computes in double, writes D digits), error, flood. With MARKER, it first starts a grandchild that sleeps
+dimension, digits, number, padded (computes in double, writes D digits), short (asked for more than
+30 digits, computes in about D/2 + 3 and writes D), error, flood. With MARKER, it first starts a grandchild that sleeps
 for an hour with MARKER on its command line, so that a test can look for survivors.
 """
 import decimal
@@ -39,11 +40,17 @@ for count, line in enumerate(sys.stdin):
     h = decimal.Decimal(request["h"])
     q = [decimal.Decimal(x) for x in request["q"]]
     p = [decimal.Decimal(x) for x in request["p"]]
-    if mode == "euler":  # explicit Euler on the harmonic oscillator: order 1, not symplectic
+    if mode == "short" and digits > 30:  # asked for many digits, computes with about half of them
+        decimal.getcontext().prec = digits // 2 + 3
+    if mode == "short":  # symplectic Euler with a cubic force: products whose digits get rounded
+        q = [qi + h * pi for qi, pi in zip(q, p)]
+        p = [pi - h * qi * qi * qi for qi, pi in zip(q, p)]
+    elif mode == "euler":  # explicit Euler on the harmonic oscillator: order 1, not symplectic
         omega = decimal.Decimal(greeting["system"]["params"]["omega"])
         q, p = [qi + h * pi for qi, pi in zip(q, p)], [pi - h * omega**2 * qi for qi, pi in zip(q, p)]
     else:
         q = [qi + h * pi for qi, pi in zip(q, p)]
+    decimal.getcontext().prec = digits + 5
     write = lambda values: [f"{x:.{digits - 1}e}" for x in values]
     answer = {"q": write(q), "p": write(p)}
     if count >= good:
