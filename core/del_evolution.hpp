@@ -51,7 +51,7 @@ auto del_step(const System& system, const DelScheme<typename System::Scalar>& sc
   auto report = newton_solve<T, n>(
       q_next,
       [&](const Vector<T, n>& x, Vector<T, n>& residual, Matrix<T, n, n>& jacobian) {
-        auto legendre = discrete_legendre(system, scheme.future, q_current, x, h);
+        auto legendre = begin_momentum(system, scheme.future, q_current, x, h);
         residual = legendre.p_begin - target;
         jacobian = legendre.dp_begin_dq_e;
       },
@@ -101,12 +101,12 @@ auto start_from_momentum(const System& system, const QxQDiscretization<typename 
   constexpr int n = System::dimension;
   Vector<T, n> p0 = momentum(system, q0, w0);
   Vector<T, n> q1 = q0 + h * w0;
-  auto report = newton_solve<T, n>(q1, [&](const Vector<T, n>& x, Vector<T, n>& residual,
-                                           Matrix<T, n, n>& jacobian) {
-    auto legendre = discrete_legendre(system, future, q0, x, h);
-    residual = legendre.p_begin - p0;
-    jacobian = legendre.dp_begin_dq_e;
-  });
+  auto report = newton_solve<T, n>(
+      q1, [&](const Vector<T, n>& x, Vector<T, n>& residual, Matrix<T, n, n>& jacobian) {
+        auto legendre = begin_momentum(system, future, q0, x, h);
+        residual = legendre.p_begin - p0;
+        jacobian = legendre.dp_begin_dq_e;
+      });
   require_converged(report, "start from p_begin(q0, q1) = p(0) with h = " + to_decimal<T>(h, 17));
   return q1;
 }

@@ -12,6 +12,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/discrete_legendre.hpp"
@@ -189,15 +190,16 @@ S discrete_lagrangian(const System& system,
   return value;
 }
 
-// L_d(q_b, q_e) as a jet of order `Order` in its 2n arguments (q_b first, then q_e).
-template <int Order, LagrangianSystem System>
+// L_d(q_b, q_e) as a jet of order `Order` in its 2n arguments (q_b first, then q_e); with
+// Split = n, of the Hessian only the q_b–q_e block (core/jet.hpp).
+template <int Order, int Split = 0, LagrangianSystem System>
 auto discrete_lagrangian_jet(const System& system,
                              const QxQDiscretization<typename System::Scalar>& discretization,
                              const Vector<typename System::Scalar, System::dimension>& q_b,
                              const Vector<typename System::Scalar, System::dimension>& q_e,
                              const typename System::Scalar& h) {
   constexpr int n = System::dimension;
-  using J = Jet<typename System::Scalar, 2 * n, Order>;
+  using J = Jet<typename System::Scalar, 2 * n, Order, Split>;
   Point<J, n> jet_b, jet_e;
   for (int i = 0; i < n; ++i) {
     jet_b[i] = J::variable(q_b[i], i);
@@ -241,6 +243,39 @@ auto discrete_legendre(const System& system,
       d.dp_end_dq_b(i, j) = L.second(n + i, j);
       d.dp_end_dq_e(i, j) = L.second(n + i, n + j);
     }
+  }
+  return d;
+}
+
+// What a DEL step's Newton solve reads at (q_b, q_e): p_begin and ∂p_begin/∂q_e. They come from
+// a jet that keeps only the q_b–q_e block of the Hessian (1 + 2n + n² numbers instead of
+// 1 + 2n + 4n², and n² second derivatives computed instead of n(2n + 1)), bit for bit
+// discrete_legendre's.
+template <class T, int n>
+struct BeginMomentum {
+  Vector<T, n> p_begin;
+  Matrix<T, n, n> dp_begin_dq_e;
+};
+
+template <LagrangianSystem System>
+auto begin_momentum(const System& system,
+                    const QxQDiscretization<typename System::Scalar>& discretization,
+                    const Vector<typename System::Scalar, System::dimension>& q_b,
+                    const Vector<typename System::Scalar, System::dimension>& q_e,
+                    const typename System::Scalar& h) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  BeginMomentum<T, n> d;
+  if (discretization.rule == QxQRule::galerkin) {
+    DiscreteLegendre<T, n> full = discrete_legendre(system, discretization, q_b, q_e, h);
+    d.p_begin = std::move(full.p_begin);
+    d.dp_begin_dq_e = std::move(full.dp_begin_dq_e);
+    return d;
+  }
+  const auto L = discrete_lagrangian_jet<2, n>(system, discretization, q_b, q_e, h);
+  for (int i = 0; i < n; ++i) {
+    d.p_begin[i] = -L.gradient[i];
+    for (int j = 0; j < n; ++j) d.dp_begin_dq_e(i, j) = -L.second(i, n + j);
   }
   return d;
 }

@@ -35,8 +35,8 @@ template <class S>
 struct leaf_scalar {
   using type = S;
 };
-template <class T, int N, int Order>
-struct leaf_scalar<Jet<T, N, Order>> {
+template <class T, int N, int Order, int Split>
+struct leaf_scalar<Jet<T, N, Order, Split>> {
   using type = typename leaf_scalar<T>::type;
 };
 template <class S>

@@ -526,8 +526,8 @@ template <class S>
 struct innermost_scalar {
   using type = S;
 };
-template <class T, int N, int O>
-struct innermost_scalar<Jet<T, N, O>> {
+template <class T, int N, int O, int B>
+struct innermost_scalar<Jet<T, N, O, B>> {
   using type = typename innermost_scalar<T>::type;
 };
 

@@ -3,15 +3,17 @@
 // first-order jet give the very entries of the full second-order jet, bit for bit; a product of
 // a jet with itself is the product of two copies; the Hessian is exactly symmetric; and a formula
 // tape's reused jet buffer never carries an earlier working precision into a later one.
+#include "core/jet.hpp"
+
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "cases/formula_parser.hpp"
 #include "cases/systems.hpp"
 #include "core/discrete_lagrangian.hpp"
 #include "core/formula_system.hpp"
-#include "core/jet.hpp"
 #include "core/lagrangian.hpp"
 #include "tests/test_scalars.hpp"
 
@@ -41,7 +43,8 @@ void expect_velocity_jet_is_exact(const System& system) {
   EXPECT_EQ(narrow.value, full.value);
   for (int i = 0; i < n; ++i) {
     EXPECT_EQ(narrow.gradient[i], full.dL_dw[i]) << i;
-    for (int j = 0; j < n; ++j) EXPECT_EQ(narrow.second(i, j), full.d2L_dw2(i, j)) << i << ", " << j;
+    for (int j = 0; j < n; ++j)
+      EXPECT_EQ(narrow.second(i, j), full.d2L_dw2(i, j)) << i << ", " << j;
   }
   const Vector<T, n> p = momentum(system, q, w);
   for (int i = 0; i < n; ++i) EXPECT_EQ(p[i], full.dL_dw[i]) << i;
@@ -65,8 +68,8 @@ TYPED_TEST(JetTest, FirstOrderDiscreteMomentaAreTheFullJetsMomenta) {
   const auto [q_b, w] = state<T, 2>();
   const Vector<T, 2> q_e = q_b + w / 10;
   const T h = T(1) / 10;
-  for (QxQRule rule : {QxQRule::midpoint, QxQRule::trapezoid, QxQRule::alpha, QxQRule::left_rectangle,
-                       QxQRule::right_rectangle, QxQRule::weighted}) {
+  for (QxQRule rule : {QxQRule::midpoint, QxQRule::trapezoid, QxQRule::alpha,
+                       QxQRule::left_rectangle, QxQRule::right_rectangle, QxQRule::weighted}) {
     QxQDiscretization<T> d;
     d.rule = rule;
     d.parameter = T(3) / 10;
@@ -78,6 +81,59 @@ TYPED_TEST(JetTest, FirstOrderDiscreteMomentaAreTheFullJetsMomenta) {
       EXPECT_EQ(momenta.p_end[i], full.p_end[i]) << rule_name(rule) << " " << i;
     }
   }
+}
+
+// What a DEL step's Newton reads, p_begin and ∂p_begin/∂q_e, from the jet that keeps only the
+// q_b–q_e block of the Hessian: discrete_legendre's entries bit for bit, for every rule the jets
+// evaluate, a twin term and a formula system. The comparison sees the rounding level: one ulp more
+// in q_e changes the result.
+template <class System>
+void expect_block_jet_is_exact(const System& system, const std::string& label) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  const auto [q_b, w] = state<T, n>();
+  const Vector<T, n> q_e = q_b + w / 10;
+  const T h = T(1) / 10;
+  for (QxQRule rule : {QxQRule::midpoint, QxQRule::trapezoid, QxQRule::alpha,
+                       QxQRule::left_rectangle, QxQRule::right_rectangle, QxQRule::weighted}) {
+    for (bool twin : {false, true}) {
+      QxQDiscretization<T> d;
+      d.rule = rule;
+      d.parameter = T(3) / 10;
+      if (twin) d.twin = TwinTerm<T>{std::vector<T>(n, T(2) / 3), 1};
+      const auto full = discrete_legendre(system, d, q_b, q_e, h);
+      const auto block = begin_momentum(system, d, q_b, q_e, h);
+      for (int i = 0; i < n; ++i) {
+        EXPECT_EQ(block.p_begin[i], full.p_begin[i]) << label << " " << rule_name(rule) << " " << i;
+        for (int j = 0; j < n; ++j)
+          EXPECT_EQ(block.dp_begin_dq_e(i, j), full.dp_begin_dq_e(i, j))
+              << label << " " << rule_name(rule) << " " << i << ", " << j;
+      }
+    }
+  }
+  QxQDiscretization<T> midpoint;
+  midpoint.rule = QxQRule::midpoint;
+  Vector<T, n> nudged = q_e;
+  using std::abs;
+  nudged[0] += 2 * epsilon<T>() * abs(nudged[0]);
+  EXPECT_NE(begin_momentum(system, midpoint, q_b, nudged, h).p_begin,
+            begin_momentum(system, midpoint, q_b, q_e, h).p_begin)
+      << label;
+}
+
+TYPED_TEST(JetTest, TheDelStepsBlockJetGivesTheFullJetsEntries) {
+  using T = TypeParam;
+  expect_block_jet_is_exact(Pendulum<T>{}, Pendulum<T>::name);
+  expect_block_jet_is_exact(PaperExample<T>{}, PaperExample<T>::name);
+  expect_block_jet_is_exact(RelativisticParticle<T>{}, RelativisticParticle<T>::name);
+  expect_block_jet_is_exact(ChargedParticle<T>{}, ChargedParticle<T>::name);
+  expect_block_jet_is_exact(Kepler<T>{}, Kepler<T>::name);
+  expect_block_jet_is_exact(DoublePendulum<T>{}, DoublePendulum<T>::name);
+  const std::string text =
+      "(1 + q1^2/4)*w1^2/2 + w1*w2*cos(q1 - q2)/3 + w2^2/2 - sqrt(1 + q1^2 + q2^2)";
+  const FormulaSystemDefinition definition{
+      "formula", text, parse_formula(text), {"q1", "q2"}, {"w1", "w2"}, {}, {}, nullptr};
+  expect_block_jet_is_exact(make_formula_system<T, 2>(definition), "formula");
 }
 
 // The in-place product: u *= u is u * (a copy of u), and every Hessian is exactly symmetric.
@@ -108,8 +164,8 @@ TYPED_TEST(JetTest, TheInPlaceProductOfAJetWithItselfIsTheProductOfTwoCopies) {
 // reused at the higher precision.
 TEST(FormulaTapeBuffer, APrecisionChangeDoesNotCarryTheEarlierPrecision) {
   const std::string text = "sin(q)*w^2/3 + exp(q*w)";
-  const FormulaSystemDefinition definition{
-      "formula", text, parse_formula(text), {"q"}, {"w"}, {}, {}, nullptr};
+  const FormulaSystemDefinition definition{"formula", text,   parse_formula(text), {"q"}, {"w"}, {},
+                                           {},        nullptr};
   using J = Jet<mpfr_real, 2>;
   const auto evaluate = [&] {
     const auto system = make_formula_system<mpfr_real, 1>(definition);
