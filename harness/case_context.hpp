@@ -263,6 +263,8 @@ struct CaseContext {
   // energy-behaviour, symplecticity, discrete-noether, modified-energy): the DEL trajectories of
   // `scheme` and the one-step map's states (harness/claims/global_order.hpp, run_sweep).
   mutable std::map<int, std::shared_ptr<const DelTrajectory<T, n>>> del_runs;
+  // p_begin along each kept DEL trajectory (trajectory_momenta in harness/claims/global_order.hpp).
+  mutable std::map<int, std::shared_ptr<const std::vector<Vector<T, n>>>> del_momenta;
   // What each N's run (the case's DEL, map or TQ evolution) cost: L evaluations and seconds.
   mutable std::map<int, RunCost> run_costs;
   mutable std::map<int, std::shared_ptr<const std::vector<State<T, n>>>> map_runs;

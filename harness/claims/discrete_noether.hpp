@@ -90,11 +90,9 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
         claim.evidence["momentum_map"] = "J_k = FL(q_k, w_k) · xi(q_k) along the states of " + context.map->name() +
                                          ", k = 0 … N−1";
       } else {
-        visit_trajectories(context, "discrete-noether: momentum map", [&](const T& h, const auto& q) {
-          std::vector<Vector<T, n>> p;
-          for (std::size_t k = 0; k + 1 < q.size(); ++k) p.push_back(momentum_at_step(context, q, k, h));
-          judge(h, q, p);
-        });
+        visit_trajectories(
+            context, "discrete-noether: momentum map",
+            [&](const T& h, const auto& q) { judge(h, q, *trajectory_momenta(context, q, h)); });
         claim.evidence["momentum_map"] = "J_k = p_begin[L_d](q_k, q_k+1) · xi(q_k), k = 0 … N−1";
       }
       claim.evidence["tolerance_rule"] = std::to_string(ulps) +

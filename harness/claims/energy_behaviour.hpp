@@ -410,8 +410,9 @@ struct EnergyBehaviourClaim : Claim<EnergyBehaviourClaim> {
         std::vector<T> energies;
         std::vector<Vector<T, n>> velocities;
         T size = 0;
+        const auto momenta = trajectory_momenta(context, q, h);
         for (std::size_t k = 0; k + 1 < q.size(); ++k) {
-          const Vector<T, n> p = momentum_at_step(context, q, k, h);
+          const Vector<T, n>& p = (*momenta)[k];
           const Vector<T, n> w = velocity_for_momentum(context.system, q[k], p, Vector<T, n>((q[k + 1] - q[k]) / h));
           energies.push_back(energy(context.system, q[k], w));
           velocities.push_back(w);

@@ -140,12 +140,28 @@ void visit_trajectories(const CaseContext<System>& context, const std::string& w
   }
 }
 
-// p_k = p_begin[L_d](q_k, q_{k+1}) = −D1 L_d(q_k, q_{k+1}), the momentum a trajectory carries at step k.
+// p_k = p_begin[L_d](q_k, q_{k+1}) = −D1 L_d(q_k, q_{k+1}), k = 0 … N − 1: the momenta a DEL
+// trajectory q of the case's sweep carries. They are computed once per N and shared by the claims
+// that read them (energy-behaviour, modified-energy, discrete-noether); a trajectory that is not
+// the sweep's kept one gets its own.
 template <LagrangianSystem System>
-Vector<typename System::Scalar, System::dimension> momentum_at_step(
-    const CaseContext<System>& context, const std::vector<Vector<typename System::Scalar, System::dimension>>& q,
-    int k, const typename System::Scalar& h) {
-  return p_begin(context.system, context.scheme.future, q[k], q[k + 1], h);
+std::shared_ptr<const std::vector<Vector<typename System::Scalar, System::dimension>>>
+trajectory_momenta(const CaseContext<System>& context,
+                   const std::vector<Vector<typename System::Scalar, System::dimension>>& q,
+                   const typename System::Scalar& h) {
+  using Momenta = std::vector<Vector<typename System::Scalar, System::dimension>>;
+  const int N = static_cast<int>(q.size()) - 1;
+  const auto kept_run = context.del_runs.find(N);
+  const bool kept = kept_run != context.del_runs.end() && &kept_run->second->q == &q;
+  if (kept)
+    if (auto known = context.del_momenta.find(N); known != context.del_momenta.end())
+      return known->second;
+  auto momenta = std::make_shared<Momenta>();
+  momenta->reserve(q.size() - 1);
+  for (std::size_t k = 0; k + 1 < q.size(); ++k)
+    momenta->push_back(p_begin(context.system, context.scheme.future, q[k], q[k + 1], h));
+  if (kept) context.del_momenta[N] = momenta;
+  return momenta;
 }
 
 // Steps too large for the motion are not evidence against an order: a failing series whose

@@ -66,8 +66,9 @@ struct ModifiedEnergyClaim : Claim<ModifiedEnergyClaim> {
       T H0 = 0, modified0 = 0, largest_H = 0, largest_modified = 0, size = 0;
       std::vector<T> modified;
       std::vector<Vector<T, n>> velocities;  // w = p for L = ½|w|² − U(q)
+      const auto momenta = trajectory_momenta(context, q, h);
       for (int k = 0; k < N; ++k) {
-        const Vector<T, n> p = momentum_at_step(context, q, k, h);
+        const Vector<T, n>& p = (*momenta)[k];
         const ModifiedEnergy<T> E = modified_energy(context.system, form, q[k], p, h);
         if (k == 0) H0 = E.H, modified0 = E.modified;
         largest_H = max(largest_H, T(abs(T(E.H - H0))));
