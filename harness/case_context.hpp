@@ -260,14 +260,16 @@ struct CaseContext {
   FitOptions fit_options;  // --refine tightens the asymptotic range (harness/run_case.cpp)
   std::function<void(const std::string&)> progress;
   // The case's sweep, computed once per N and shared by every claim that walks it (global-order,
-  // energy-behaviour, symplecticity, discrete-noether, modified-energy): the DEL trajectories of
-  // `scheme` and the one-step map's states (harness/claims/global_order.hpp, run_sweep).
+  // energy-behaviour, symplecticity, discrete-noether, modified-energy, twin-term-invariance): the
+  // DEL trajectories of `scheme`, the one-step map's states and the TQ evolution's
+  // (harness/claims/global_order.hpp, run_sweep).
   mutable std::map<int, std::shared_ptr<const DelTrajectory<T, n>>> del_runs;
   // p_begin along each kept DEL trajectory (trajectory_momenta in harness/claims/global_order.hpp).
   mutable std::map<int, std::shared_ptr<const std::vector<Vector<T, n>>>> del_momenta;
   // What each N's run (the case's DEL, map or TQ evolution) cost: L evaluations and seconds.
   mutable std::map<int, RunCost> run_costs;
   mutable std::map<int, std::shared_ptr<const std::vector<State<T, n>>>> map_runs;
+  mutable std::map<int, std::shared_ptr<const std::vector<State<T, n>>>> tq_runs;  // formalism "tq"
 
   CaseContext(const CaseSpec& spec_, System system_, std::function<void(const std::string&)> progress_)
       : spec(spec_),

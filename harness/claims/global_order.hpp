@@ -56,6 +56,24 @@ shared_map_trajectory(const CaseContext<System>& context, const typename System:
   return kept;
 }
 
+// The TQ evolution of the case's discretization from the exact initial state over N steps at h,
+// computed once per N and shared (global-order, twin-term-invariance).
+template <LagrangianSystem System>
+std::shared_ptr<const std::vector<State<typename System::Scalar, System::dimension>>>
+shared_tq_trajectory(const CaseContext<System>& context, const typename System::Scalar& h, int N) {
+  auto& kept = context.tq_runs[N];
+  if (!kept) {
+    const std::string what = "TQ sweep N = " + std::to_string(N);
+    context.report(what);
+    const CostMeter meter;
+    kept = std::make_shared<const std::vector<State<typename System::Scalar, System::dimension>>>(
+        tq_trajectory(context.system, *context.tq, context.initial, h, N,
+                      context.step_progress(what)));
+    context.run_costs[N] = meter.cost();
+  }
+  return kept;
+}
+
 // The structure claims' walk for a one-step map: `visit(h, x)` for each h with its
 // trajectory x_0 … x_N, reporting "<what> over N steps at h = …" as it goes.
 template <LagrangianSystem System, class Visit>
@@ -100,13 +118,9 @@ SweepRun<System> run_sweep(const CaseContext<System>& context, const DelScheme<t
     const T& h = steps[i];
     int N = context.spec.steps[i];
     if (context.tq) {  // the TQ evolution from the exact initial state
-      context.report("TQ sweep N = " + std::to_string(N));
-      const CostMeter meter;
-      auto states = tq_trajectory(context.system, *context.tq, context.initial, h, N,
-                                  context.step_progress("TQ sweep N = " + std::to_string(N)));
-      if (&scheme == &context.scheme) context.run_costs[N] = meter.cost();
-      run.q_final.push_back(states.back().q);
-      run.p_final.push_back(momentum(context.system, states.back().q, states.back().w));
+      const State<T, System::dimension>& end = shared_tq_trajectory(context, h, N)->back();
+      run.q_final.push_back(end.q);
+      run.p_final.push_back(momentum(context.system, end.q, end.w));
       continue;
     }
     if (context.map) {  // the one-step map from the exact initial state

@@ -84,9 +84,15 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
         std::vector<T> sizes;
         Vector<T, 2 * n> scale = Vector<T, 2 * n>::Zero();  // each coordinate's size along the run
         for (std::size_t k = 0; k + 1 < q.size(); ++k) {
-          auto future = discrete_legendre(context.system, context.scheme.future, q[k], q[k + 1], h);
+          const auto future =
+              discrete_legendre(context.system, context.scheme.future, q[k], q[k + 1], h);
           scale = scale.cwiseMax(phase_size<T, n>(q[k], future.p_begin));
-          auto past = discrete_legendre(context.system, context.scheme.past, q[k], q[k + 1], h);
+          // A matched scheme's past side is the same discretization at the same points: the same
+          // numbers, not computed twice.
+          const auto past =
+              context.scheme.mismatched
+                  ? discrete_legendre(context.system, context.scheme.past, q[k], q[k + 1], h)
+                  : future;
           jacobians.push_back(del_map_jacobian<T, n>(future, past));
           sizes.push_back(max({T(1), max_entry<T, n, n>(future.dp_begin_dq_b), max_entry<T, n, n>(future.dp_begin_dq_e),
                                max_entry<T, n, n>(past.dp_end_dq_b), max_entry<T, n, n>(past.dp_end_dq_e)}));
