@@ -97,6 +97,8 @@ int run_del_benchmark(std::ostream& out) {
     out << line;
   }
   out << "ratio = step / (evals x one eval); target <= " << target_ratio << "\n";
+  out << "one eval: L's value, gradient and full Hessian in (q, w); the step's Newton keeps only the "
+         "q_b-q_e block of L_d's Hessian, which is why a ratio can fall below 1\n";
   out << nlohmann::json{{"target_ratio", target_ratio}, {"rows", rows}}.dump() << "\n";
   return 0;
 }
