@@ -19,6 +19,10 @@ import sys
 import time
 import uuid
 
+# The signals' default action in the child: a background shell leaves SIGINT ignored, and vivv
+# rightly keeps an ignored signal ignored (tests/check_interrupt.py).
+from check_interrupt import default_signals
+
 HERE = pathlib.Path(__file__).resolve().parent
 FAULT = HERE / "process" / "fault.py"
 TIMEOUT = 2  # --process-timeout for the fault cases
@@ -139,7 +143,7 @@ def main(argv):
         name = f"{signal.Signals(sig).name} --jobs {jobs}"
         process = subprocess.Popen([vivv, "run", *map(str, cases), "--out", str(work / "signal"), "--quiet",
                                     "--allow-process", "--process-timeout", "60", "--jobs", str(jobs)],
-                                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, preexec_fn=default_signals)
         expected = jobs  # one hanging program per running case
         if not wait_for(lambda: len(survivors(marker)) >= expected, 20):
             problems.append(f"{name}: the map programs' grandchildren never appeared")
