@@ -1,9 +1,9 @@
 // Google Benchmark: a formula Lagrangian against its compiled catalogue twin,
 // in MPFR at 256 bits (issue 12: a formula may cost at most 2x its twin).
 // Per DEL step (midpoint, Newton to convergence from the same start) and per
-// Taylor step (the reference flow over one period, divided by its steps), for
-// the pendulum and the paper's example. After the runs it prints each ratio
-// formula / compiled, both measured in this one run.
+// Taylor step (the reference flow over one period; the formula's and its twin's take the same
+// steps), for the pendulum and the paper's example. After the runs it prints each ratio formula /
+// compiled, both measured in this one run.
 //
 // Each benchmark times the formula step and its twin's in alternation (time_in_alternation).
 #include <benchmark/benchmark.h>

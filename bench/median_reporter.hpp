@@ -1,8 +1,7 @@
-// A console reporter that also keeps every repetition's time — per iteration, or per step when
-// the benchmark sets a "steps" counter — and the counters, so that each figure a benchmark
-// prints is a ratio of medians measured in this one run. One repetition is not enough: a DEL
-// step in MPFR measured 105 µs and 200 µs in two repetitions of the same binary (the allocator's
-// state), which moved a formula/compiled ratio from 0.8 to 1.4; the median of five is stable.
+// A console reporter that also keeps every repetition's counters, so that each figure a
+// benchmark prints is a median over repetitions of a ratio measured in this one run (by
+// time_in_alternation below). One repetition is not enough: a DEL step in MPFR measured 105 µs
+// and 200 µs in two repetitions of the same binary (the allocator's state).
 #pragma once
 
 #include <benchmark/benchmark.h>
@@ -22,47 +21,35 @@ class MedianReporter : public benchmark::ConsoleReporter {
   void ReportRuns(const std::vector<Run>& runs) override {
     for (const auto& run : runs) {
       if (run.run_type != Run::RT_Iteration) continue;
-      double seconds = run.GetAdjustedRealTime();
-      const auto steps = run.counters.find("steps");
-      if (steps != run.counters.end() && steps->second.value > 0) seconds /= steps->second.value;
-      const std::string& name = run.run_name.function_name;
-      times_[name].push_back(seconds);
       for (const auto& [counter, value] : run.counters)
-        counters_[name][counter].push_back(value.value);
+        counters_[run.run_name.function_name][counter].push_back(value.value);
     }
     ConsoleReporter::ReportRuns(runs);
   }
 
-  bool has(const std::string& name) const { return times_.count(name) > 0; }
-  // The median over the repetitions of `name`'s time per unit.
-  double median(const std::string& name) const { return median_of(times_.at(name)); }
+  bool has(const std::string& name) const { return counters_.count(name) > 0; }
   // A counter's value in the last repetition, and its median over the repetitions.
   double counter(const std::string& name, const std::string& counter) const {
     return counters_.at(name).at(counter).back();
   }
   double median_counter(const std::string& name, const std::string& counter) const {
-    return median_of(counters_.at(name).at(counter));
-  }
-
- private:
-  static double median_of(std::vector<double> values) {
+    std::vector<double> values = counters_.at(name).at(counter);
     std::sort(values.begin(), values.end());
     const std::size_t middle = values.size() / 2;
     return values.size() % 2 ? values[middle] : (values[middle - 1] + values[middle]) / 2;
   }
-  std::map<std::string, std::vector<double>> times_;
+
+ private:
   std::map<std::string, std::map<std::string, std::vector<double>>> counters_;
 };
 
 // Times `base()` and `other()` in alternation, the order swapped every iteration, and sets the
-// counter "ratio" to other's time over base's (and "steps" to `steps`, so that the reporter's
-// time is per step of the pair). Timed as two benchmarks one after the other, a formula DEL step
-// and its compiled twin gave ratios from 0.75 to 1.7 in one binary on a shared 2-core machine
-// whose speed changed within seconds, and the medians of five repetitions did not steady it;
-// in alternation the five repetitions agree to within 1 %.
+// counter "ratio" to other's time over base's. Timed as two benchmarks one after the other, a
+// formula DEL step and its compiled twin gave ratios from 0.75 to 1.7 in one binary on a shared
+// 2-core machine whose speed changed within seconds, and the medians of five repetitions did not
+// steady it; in alternation the five repetitions agree to within 1 %.
 template <class Base, class Other>
-void time_in_alternation(benchmark::State& state, const Base& base, const Other& other,
-                         long steps = 1) {
+void time_in_alternation(benchmark::State& state, const Base& base, const Other& other) {
   using clock = std::chrono::steady_clock;
   clock::duration base_time{}, other_time{};
   bool other_first = false;
@@ -78,7 +65,6 @@ void time_in_alternation(benchmark::State& state, const Base& base, const Other&
   }
   state.counters["ratio"] = std::chrono::duration<double>(other_time).count() /
                             std::chrono::duration<double>(base_time).count();
-  state.counters["steps"] = double(steps);
 }
 
 }  // namespace vivv
