@@ -21,6 +21,7 @@
 // compile).
 #pragma once
 
+#include <cassert>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -484,9 +485,23 @@ void Tape<T>::run(const S* x, std::vector<S>& value) const {
       // A jet's elementary functions take their argument by value: a copy moved in comes back
       // transformed in the slot's storage.
       case TapeOp::sin:
-        value[i] = sin(argument(i, node.a));
+        if constexpr (is_jet<S>::value) {
+          // The pair at once, from one sine and one cosine of the value (node i + 1 is the cos
+          // partner, prune() keeps it): the same chain rules as the jet's sin and cos, which
+          // compute both each. Computed apart, a pendulum's DEL step made four MPFR sines and
+          // cosines per L where its compiled twin makes two.
+          assert(i + 1 < nodes.size() && nodes[i + 1].op == TapeOp::cos &&
+                 nodes[i + 1].a == node.a);
+          using V = std::decay_t<decltype(S::value)>;
+          const V s = sin(value[node.a].value), c = cos(value[node.a].value);
+          value[i] = value[node.a], value[i].apply_chain(s, c, -s);
+          value[i + 1] = value[node.a], value[i + 1].apply_chain(c, -s, -c);
+          ++i;
+        } else {
+          value[i] = sin(argument(i, node.a));
+        }
         break;
-      case TapeOp::cos:
+      case TapeOp::cos:  // for a jet, computed with its sin partner above
         value[i] = cos(argument(i, node.a));
         break;
       case TapeOp::exp:

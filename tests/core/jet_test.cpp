@@ -136,6 +136,29 @@ TYPED_TEST(JetTest, TheDelStepsBlockJetGivesTheFullJetsEntries) {
   expect_block_jet_is_exact(make_formula_system<T, 2>(definition), "formula");
 }
 
+// A tape computes a sine and the cosine of the same argument as one pair, from one sine and one
+// cosine of its value: each is the jet's own sin or cos bit for bit, whether the formula uses both
+// or one of them.
+TYPED_TEST(JetTest, ATapesSineCosinePairIsTheJetsSineAndCosine) {
+  using T = TypeParam;
+  using J = Jet<T, 2>;
+  const Point<J, 1> q{J::variable(T(3) / 10, 0)}, w{J::variable(T(7) / 10, 1)};
+  const auto expect_same = [&](const std::string& text, const J& expected) {
+    const FormulaSystemDefinition definition{
+        "formula", text, parse_formula(text), {"q"}, {"w"}, {}, {}, nullptr};
+    const J formula = make_formula_system<T, 1>(definition).lagrangian(q, w);
+    EXPECT_EQ(formula.value, expected.value) << text;
+    for (int i = 0; i < 2; ++i) {
+      EXPECT_EQ(formula.gradient[i], expected.gradient[i]) << text << " " << i;
+      for (int j = 0; j < 2; ++j)
+        EXPECT_EQ(formula.second(i, j), expected.second(i, j)) << text << " " << i << ", " << j;
+    }
+  };
+  expect_same("sin(q*w) * cos(q*w)", sin(q[0] * w[0]) * cos(q[0] * w[0]));
+  expect_same("cos(q*w)", cos(q[0] * w[0]));
+  expect_same("sin(q*w)", sin(q[0] * w[0]));
+}
+
 // The in-place product: u *= u is u * (a copy of u), and every Hessian is exactly symmetric.
 TYPED_TEST(JetTest, TheInPlaceProductOfAJetWithItselfIsTheProductOfTwoCopies) {
   using T = TypeParam;
