@@ -144,11 +144,20 @@ MapProcess::MapProcess(Options options, const nlohmann::json& greeting)
   std::vector<char*> argv;
   for (auto& word : words) argv.push_back(word.data());
   argv.push_back(nullptr);
-  int to_child[2], from_child[2], child_errors[2], exec_status[2];
-  if (pipe2(to_child, O_CLOEXEC) || pipe2(from_child, O_CLOEXEC) ||
-      pipe2(child_errors, O_CLOEXEC) || pipe2(exec_status, O_CLOEXEC))
-    throw MapProcessError("cannot create the pipes to start " + name() + ": " +
-                          std::strerror(errno));
+  // The program's input, its output, its stderr and the exec status; a pipe that cannot be made
+  // (out of descriptors) closes the ones made before it.
+  int pipes[4][2];
+  for (int made = 0; made < 4; ++made)
+    if (pipe2(pipes[made], O_CLOEXEC) != 0) {
+      const int error = errno;
+      for (int k = 0; k < made; ++k) close(pipes[k][0]), close(pipes[k][1]);
+      throw MapProcessError("cannot create the pipes to start " + name() + ": " +
+                            std::strerror(error));
+    }
+  int(&to_child)[2] = pipes[0];
+  int(&from_child)[2] = pipes[1];
+  int(&child_errors)[2] = pipes[2];
+  int(&exec_status)[2] = pipes[3];
   prepare_signals();
   const pid_t parent = getpid();
   {
@@ -189,7 +198,7 @@ MapProcess::MapProcess(Options options, const nlohmann::json& greeting)
   close(exec_status[1]);
   input_ = to_child[1], output_ = from_child[0], errors_ = child_errors[0];
   if (pid_ < 0) {
-    close(exec_status[0]);
+    for (int fd : {exec_status[0], input_, output_, errors_}) close(fd);
     throw MapProcessError("cannot start " + name() + ": " + std::strerror(fork_error));
   }
   int exec_error = 0;

@@ -1,8 +1,16 @@
 // The digit count of protocol vivv-map/1's numbers (harness/map_process.hpp): what decides
-// whether a map program's answer carries the precision it was asked for.
+// whether a map program's answer carries the precision it was asked for. And a program that
+// cannot be started leaves no descriptor of vivv's open.
 #include "harness/map_process.hpp"
 
+#include <dirent.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+
+#include <cstdlib>
+#include <set>
+#include <string>
+#include <vector>
 
 namespace vivv {
 namespace {
@@ -27,6 +35,41 @@ TEST(SignificantDigits, RefusesWhatIsNotADecimalNumber) {
   for (const char* text : {"", "-", ".", "e5", "1e", "1e+", "1.2.3", "nan", "inf", "0x1p3", "1,5",
                            " 1", "1 ", "1e1234567890", "1.5f"})
     EXPECT_EQ(significant_digits(text), -1) << "'" << text << "'";
+}
+
+// The descriptors open in this process (without the one that lists them).
+std::set<int> open_descriptors() {
+  std::set<int> open;
+  DIR* listing = opendir("/proc/self/fd");
+  if (!listing) return open;
+  while (const dirent* entry = readdir(listing))
+    if (entry->d_name[0] != '.') open.insert(std::atoi(entry->d_name));
+  open.erase(dirfd(listing));
+  closedir(listing);
+  return open;
+}
+
+// With room for two pipes and half of a third, starting a program fails at its third pipe, says
+// so, and closes the two it made.
+TEST(MapProcessStart, APipeThatCannotBeMadeClosesTheOnesMadeBeforeIt) {
+  const std::set<int> before = open_descriptors();
+  std::vector<int> free;
+  for (int fd = 0; free.size() < 5; ++fd)
+    if (!before.count(fd)) free.push_back(fd);
+  rlimit saved{};
+  ASSERT_EQ(getrlimit(RLIMIT_NOFILE, &saved), 0);
+  rlimit lowered = saved;
+  lowered.rlim_cur = static_cast<rlim_t>(free.back() + 1);
+  ASSERT_EQ(setrlimit(RLIMIT_NOFILE, &lowered), 0);
+  std::string message;
+  try {
+    MapProcess process({{"/bin/true"}, "/", 5}, {{"protocol", map_protocol}});
+  } catch (const MapProcessError& error) {
+    message = error.what();
+  }
+  ASSERT_EQ(setrlimit(RLIMIT_NOFILE, &saved), 0);
+  EXPECT_NE(message.find("cannot create the pipes to start"), std::string::npos) << message;
+  EXPECT_EQ(open_descriptors(), before);
 }
 
 }  // namespace
