@@ -1,6 +1,6 @@
 // Google Benchmark: one DEL step of the degree-4 Gauss Galerkin discrete
-// Lagrangian (4 nodes) on the pendulum and the paper's example, in MPFR at 256
-// bits, against the cost of the Lagrangian evaluations it needs (issue 13).
+// Lagrangian (4 nodes) on the pendulum and the paper's example, in MPFR at 77 digits
+// (257 bits), against the cost of the Lagrangian evaluations it needs (issue 13).
 // A Galerkin DEL step nests Newton on the 3 interior control values inside
 // Newton on q_{k+1}; every action evaluation evaluates L with its first and
 // second derivatives at the 4 nodes. The step is counted (how many such
@@ -23,7 +23,7 @@
 namespace {
 
 using vivv::mpfr_real;
-constexpr int digits = 77;  // 256 bits
+constexpr int digits = 77;  // 257 bits: Boost.Multiprecision's conversion of 77 digits
 
 using vivv::Counted;
 
