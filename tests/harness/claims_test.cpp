@@ -268,7 +268,7 @@ namespace {
 
 // A reference whose own cross-check misses its promised tolerance turns every claim into
 // "error" with the numbers. The broken reference: a closed form drawn with k off by a thousand
-// times what it and its check promise (about 2e-4 in double, 1e-21 in quad), still promising
+// times what it and its check promise (about 2e-4 in double, 2e-22 in quad), still promising
 // its few ulps, and found out by the Taylor flow that checks every closed form; drawn right, the
 // same closed form passes the check.
 TYPED_TEST(ClaimsTest, AReferenceThatMissesItsToleranceMakesEveryClaimAnError) {
