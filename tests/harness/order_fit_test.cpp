@@ -417,6 +417,33 @@ TYPED_TEST(OrderFitTest, TwoPointsGiveAnOrderWithAnUnboundedInterval) {
   EXPECT_EQ(fit.confidence_high, std::numeric_limits<double>::infinity());
 }
 
+// Two points above the floor and the rest hidden below it: their one pairwise order (1.44 here,
+// against a predicted 4) is inconclusive, not a failure, for the hidden points could show the
+// slope still on its way. Negative controls: the same two points with nothing hidden (a sweep of
+// two) fail; so do four points of an order-1 error above the floor.
+TYPED_TEST(OrderFitTest, TwoPointsAboveTheFloorCannotRefuteAnOrder) {
+  using T = TypeParam;
+  using std::pow;
+  const std::vector<T> h = geometric_steps<T>("0.125", "2", 4);
+  const std::vector<T> error = {from_decimal<T>("1.74e-8"),
+                                T(from_decimal<T>("1.74e-8") / pow(T(2), from_decimal<T>("1.44"))),
+                                from_decimal<T>("6.1e-10"), from_decimal<T>("4.5e-11")};
+  const OrderVerdict hidden =
+      judge_order(fit_order(h, error, from_decimal<T>("2.2e-9")), 4, false, 0.2);
+  EXPECT_FALSE(hidden.holds) << hidden.explanation;
+  EXPECT_TRUE(hidden.inconclusive) << hidden.explanation;
+  EXPECT_TRUE(contains(hidden.explanation, "from two points")) << hidden.explanation;
+  const std::vector<T> two(h.begin(), h.begin() + 2), two_errors(error.begin(), error.begin() + 2);
+  const OrderVerdict sweep_of_two =
+      judge_order(fit_order(two, two_errors, from_decimal<T>("2.2e-9")), 4, false, 0.2);
+  EXPECT_FALSE(sweep_of_two.holds) << sweep_of_two.explanation;
+  EXPECT_FALSE(sweep_of_two.inconclusive) << sweep_of_two.explanation;
+  const OrderVerdict order_one = judge_order(
+      fit_order(h, power_law(h, T(1), T(1), T(0)), from_decimal<T>("2.2e-9")), 4, false, 0.2);
+  EXPECT_FALSE(order_one.holds) << order_one.explanation;
+  EXPECT_FALSE(order_one.inconclusive) << order_one.explanation;
+}
+
 TYPED_TEST(OrderFitTest, ZeroErrorsAreDroppedAndLeaveTheirPairwiseOrderUndefined) {
   using T = TypeParam;
   const std::vector<T> h = steps_from<T>({"0.1", "0.06", "0.04", "0.025", "0.015"});
@@ -579,6 +606,47 @@ TYPED_TEST(OrderFitTest, ASweepStillApproachingTheOrderIsInconclusiveNotAFailure
   const OrderVerdict accelerating = judge_order(fit_order(h, growing, T(0)), 2, false, 0.2);
   EXPECT_FALSE(accelerating.holds) << accelerating.explanation;
   EXPECT_FALSE(accelerating.inconclusive) << accelerating.explanation;
+}
+
+// An error whose component changes sign between two steps dips: e = |h⁴(1 − 30h)| on h = 1/8 …
+// 1/64 has the pairwise orders 5.65, 7.81, 0.92 (the sign change at h = 1/30) and a fit that
+// agrees with 4; the finest orders lie on either side of 4, the error still falling: inconclusive,
+// not a failure. Four more halvings pass. Negative controls: an order-2 error with the same dip,
+// e = |h²(1 − 30h)|, grows after it (pairwise −1.08) and fails; so does an order-4 error that
+// stops converging at a level it crosses, e = |h⁴ − 10⁻⁶|, whose finest order is negative.
+TYPED_TEST(OrderFitTest, AnErrorThatDipsThroughASignChangeIsInconclusiveNotAFailure) {
+  using T = TypeParam;
+  using std::abs, std::pow;
+  const auto dipping = [](const std::vector<T>& h, int order) {
+    using std::abs, std::pow;
+    std::vector<T> error;
+    for (const T& step : h) error.push_back(abs(T(pow(step, T(order)) * (1 - 30 * step))));
+    return error;
+  };
+  const std::vector<T> h = geometric_steps<T>("0.125", "2", 4);
+  const OrderFit fit = fit_order(h, dipping(h, 4), T(0));
+  ASSERT_TRUE(fit.ok) << fit.reason;
+  ASSERT_EQ(fit.finest_orders.size(), 2u);
+  EXPECT_GT(fit.finest_orders[0], 4.2);
+  EXPECT_LT(fit.finest_orders[1], 3.8);
+  const OrderVerdict verdict = judge_order(fit, 4, false, 0.2);
+  EXPECT_FALSE(verdict.holds) << verdict.explanation;
+  EXPECT_TRUE(verdict.inconclusive) << verdict.explanation;
+  EXPECT_TRUE(contains(verdict.explanation, "dips")) << verdict.explanation;
+  EXPECT_TRUE(contains(verdict.to_decide, "--refine")) << verdict.to_decide;
+  const std::vector<T> longer = geometric_steps<T>("0.125", "2", 8);
+  const OrderVerdict refined =
+      judge_order(fit_order(longer, dipping(longer, 4), T(0)), 4, false, 0.2);
+  EXPECT_TRUE(refined.holds) << refined.explanation;
+
+  const OrderVerdict order_two = judge_order(fit_order(h, dipping(h, 2), T(0)), 4, false, 0.2);
+  EXPECT_FALSE(order_two.holds) << order_two.explanation;
+  EXPECT_FALSE(order_two.inconclusive) << order_two.explanation;
+  std::vector<T> stalled;
+  for (const T& step : h) stalled.push_back(abs(T(pow(step, T(4)) - from_decimal<T>("1e-6"))));
+  const OrderVerdict stops = judge_order(fit_order(h, stalled, T(0)), 4, false, 0.2);
+  EXPECT_FALSE(stops.holds) << stops.explanation;
+  EXPECT_FALSE(stops.inconclusive) << stops.explanation;
 }
 
 // The note "the fit's interval excludes the predicted order (--refine extends it)" only where it
