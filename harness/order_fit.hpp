@@ -154,6 +154,10 @@ bool order_agrees(double order, double predicted, bool exact, double tolerance);
 // pairwise orders (an asymptotic statement is about small h: a fit pulled up by large-h points
 // cannot pass a sweep whose last steps converge more slowly). The explanation says which of the
 // two disagrees, and when an exact prediction lies outside the fit's confidence interval.
+// Inconclusive instead of a failure where the sweep is not yet asymptotic: pairwise orders still
+// converging on the prediction, an error that dips between the two finest steps, or two points
+// above the floor with the smaller steps hidden below it (docs/claims.md); and instead of a pass
+// where the fit's interval cannot tell the prediction from the next integer order.
 OrderVerdict judge_order(const OrderFit& fit, double predicted, bool exact, double tolerance);
 
 // x written with `digits` significant digits, as a stream writes T ("1.2e-61", "0.5").
