@@ -612,8 +612,8 @@ TYPED_TEST(OrderFitTest, ASweepStillApproachingTheOrderIsInconclusiveNotAFailure
 // 1/64 has the pairwise orders 5.65, 7.81, 0.92 (the sign change at h = 1/30) and a fit that
 // agrees with 4; the finest orders lie on either side of 4, the error still falling: inconclusive,
 // not a failure. Four more halvings pass. Negative controls: an order-2 error with the same dip,
-// e = |h²(1 − 30h)|, grows after it (pairwise −1.08) and fails; so does an order-4 error that
-// stops converging at a level it crosses, e = |h⁴ − 10⁻⁶|, whose finest order is negative.
+// e = |h²(1 − 30h)|, fails on its fit; and an error that grows after its dip (pairwise orders
+// 4, 9, −0.5, a fit of 4.65 that agrees) fails: a scheme that stops converging, not a dip.
 TYPED_TEST(OrderFitTest, AnErrorThatDipsThroughASignChangeIsInconclusiveNotAFailure) {
   using T = TypeParam;
   using std::abs, std::pow;
@@ -642,9 +642,12 @@ TYPED_TEST(OrderFitTest, AnErrorThatDipsThroughASignChangeIsInconclusiveNotAFail
   const OrderVerdict order_two = judge_order(fit_order(h, dipping(h, 2), T(0)), 4, false, 0.2);
   EXPECT_FALSE(order_two.holds) << order_two.explanation;
   EXPECT_FALSE(order_two.inconclusive) << order_two.explanation;
-  std::vector<T> stalled;
-  for (const T& step : h) stalled.push_back(abs(T(pow(step, T(4)) - from_decimal<T>("1e-6"))));
-  const OrderVerdict stops = judge_order(fit_order(h, stalled, T(0)), 4, false, 0.2);
+  std::vector<T> grew{T(1)};
+  for (const char* order : {"4", "9", "-0.5"})
+    grew.push_back(grew.back() / pow(T(2), from_decimal<T>(order)));
+  const OrderFit grew_fit = fit_order(h, grew, T(0));
+  ASSERT_GE(grew_fit.order, 3.8);  // the fit agrees: only the grown error tells it from a dip
+  const OrderVerdict stops = judge_order(grew_fit, 4, false, 0.2);
   EXPECT_FALSE(stops.holds) << stops.explanation;
   EXPECT_FALSE(stops.inconclusive) << stops.explanation;
 }
