@@ -46,6 +46,16 @@ std::vector<T> power_law(const std::vector<T>& h, const T& constant, const T& or
   return error;
 }
 
+// e_0 = 1, e_{k+1} = e_k / 2^{p_k}: on halving steps, a sweep whose pairwise orders are p_k.
+template <class T>
+std::vector<T> errors_with_pairwise_orders(const std::vector<std::string>& orders) {
+  using std::pow;
+  std::vector<T> error{T(1)};
+  for (const std::string& order : orders)
+    error.push_back(error.back() / pow(T(2), from_decimal<T>(order)));
+  return error;
+}
+
 template <class T>
 T largest(const std::vector<T>& values) {
   return *std::max_element(values.begin(), values.end());
@@ -88,6 +98,14 @@ std::vector<int> all_indices(std::size_t count) {
 
 bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
+}
+
+// Not a pass, inconclusive, the explanation naming `why` and what decides it naming --refine.
+void expect_inconclusive_until_refined(const OrderVerdict& verdict, const std::string& why) {
+  EXPECT_FALSE(verdict.holds) << verdict.explanation;
+  EXPECT_TRUE(verdict.inconclusive) << verdict.explanation;
+  EXPECT_TRUE(contains(verdict.explanation, why)) << verdict.explanation;
+  EXPECT_TRUE(contains(verdict.to_decide, "--refine")) << verdict.to_decide;
 }
 
 // ---------------------------------------------------------------- the statistics alone
@@ -583,11 +601,7 @@ TYPED_TEST(OrderFitTest, ASweepStillApproachingTheOrderIsInconclusiveNotAFailure
   ASSERT_EQ(fit.pairwise_orders.size(), 3u);
   EXPECT_NEAR(fit.pairwise_orders[2], 1.90, 0.01);
   for (bool exact : {false, true}) {
-    const OrderVerdict verdict = judge_order(fit, 2, exact, 0.2);
-    EXPECT_FALSE(verdict.holds) << verdict.explanation;
-    EXPECT_TRUE(verdict.inconclusive) << verdict.explanation;
-    EXPECT_TRUE(contains(verdict.explanation, "not yet asymptotic")) << verdict.explanation;
-    EXPECT_TRUE(contains(verdict.to_decide, "--refine")) << verdict.to_decide;
+    expect_inconclusive_until_refined(judge_order(fit, 2, exact, 0.2), "not yet asymptotic");
   }
   const std::vector<T> longer = geometric_steps<T>("0.125", "2", 8);
   const OrderVerdict refined =
@@ -599,11 +613,8 @@ TYPED_TEST(OrderFitTest, ASweepStillApproachingTheOrderIsInconclusiveNotAFailure
   EXPECT_FALSE(order_one.holds) << order_one.explanation;
   EXPECT_FALSE(order_one.inconclusive) << order_one.explanation;
 
-  std::vector<T> growing{T(1)};
-  using std::pow;
-  for (const char* order : {"1.0", "1.3", "1.75"})
-    growing.push_back(growing.back() / pow(T(2), from_decimal<T>(order)));
-  const OrderVerdict accelerating = judge_order(fit_order(h, growing, T(0)), 2, false, 0.2);
+  const OrderVerdict accelerating = judge_order(
+      fit_order(h, errors_with_pairwise_orders<T>({"1.0", "1.3", "1.75"}), T(0)), 2, false, 0.2);
   EXPECT_FALSE(accelerating.holds) << accelerating.explanation;
   EXPECT_FALSE(accelerating.inconclusive) << accelerating.explanation;
 }
@@ -616,7 +627,6 @@ TYPED_TEST(OrderFitTest, ASweepStillApproachingTheOrderIsInconclusiveNotAFailure
 // 4, 9, −0.5, a fit of 4.65 that agrees) fails: a scheme that stops converging, not a dip.
 TYPED_TEST(OrderFitTest, AnErrorThatDipsThroughASignChangeIsInconclusiveNotAFailure) {
   using T = TypeParam;
-  using std::abs, std::pow;
   const auto dipping = [](const std::vector<T>& h, int order) {
     using std::abs, std::pow;
     std::vector<T> error;
@@ -629,11 +639,7 @@ TYPED_TEST(OrderFitTest, AnErrorThatDipsThroughASignChangeIsInconclusiveNotAFail
   ASSERT_EQ(fit.finest_orders.size(), 2u);
   EXPECT_GT(fit.finest_orders[0], 4.2);
   EXPECT_LT(fit.finest_orders[1], 3.8);
-  const OrderVerdict verdict = judge_order(fit, 4, false, 0.2);
-  EXPECT_FALSE(verdict.holds) << verdict.explanation;
-  EXPECT_TRUE(verdict.inconclusive) << verdict.explanation;
-  EXPECT_TRUE(contains(verdict.explanation, "dips")) << verdict.explanation;
-  EXPECT_TRUE(contains(verdict.to_decide, "--refine")) << verdict.to_decide;
+  expect_inconclusive_until_refined(judge_order(fit, 4, false, 0.2), "dips");
   const std::vector<T> longer = geometric_steps<T>("0.125", "2", 8);
   const OrderVerdict refined =
       judge_order(fit_order(longer, dipping(longer, 4), T(0)), 4, false, 0.2);
@@ -642,10 +648,7 @@ TYPED_TEST(OrderFitTest, AnErrorThatDipsThroughASignChangeIsInconclusiveNotAFail
   const OrderVerdict order_two = judge_order(fit_order(h, dipping(h, 2), T(0)), 4, false, 0.2);
   EXPECT_FALSE(order_two.holds) << order_two.explanation;
   EXPECT_FALSE(order_two.inconclusive) << order_two.explanation;
-  std::vector<T> grew{T(1)};
-  for (const char* order : {"4", "9", "-0.5"})
-    grew.push_back(grew.back() / pow(T(2), from_decimal<T>(order)));
-  const OrderFit grew_fit = fit_order(h, grew, T(0));
+  const OrderFit grew_fit = fit_order(h, errors_with_pairwise_orders<T>({"4", "9", "-0.5"}), T(0));
   ASSERT_GE(grew_fit.order, 3.8);  // the fit agrees: only the grown error tells it from a dip
   const OrderVerdict stops = judge_order(grew_fit, 4, false, 0.2);
   EXPECT_FALSE(stops.holds) << stops.explanation;
