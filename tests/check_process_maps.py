@@ -124,7 +124,7 @@ def main(argv):
         case = write_case(work, f"fault-{mode}", [str(FAULT), mode, str(good), marker], claims)
         run([str(case), "--allow-process", "--process-timeout", str(TIMEOUT)], 2,
             r"fault\.py " + mode + r".* \(in .*\), " + pattern, mode, TIMEOUT + 10)
-        if not wait_for(lambda: not survivors(marker), 3):
+        if not wait_for(lambda: not survivors(marker), 10):
             problems.append(f"{mode}: processes of the map program survived vivv: {survivors(marker)}")
 
     # Not allowed, not found, a relative program in the case file's folder.
@@ -153,7 +153,7 @@ def main(argv):
         except subprocess.TimeoutExpired:
             process.kill()
             problems.append(f"{name}: vivv did not end within 10 s of the signal")
-        if not wait_for(lambda: not survivors(marker), 3):
+        if not wait_for(lambda: not survivors(marker), 10):
             problems.append(f"{name}: processes survived vivv: {survivors(marker)}")
             for pid in survivors(marker):
                 os.kill(pid, signal.SIGKILL)
@@ -164,7 +164,7 @@ def main(argv):
     case = write_case(work, "budget", [str(FAULT), "hang", "1", marker])
     run([str(case), "--allow-process", "--process-timeout", "60", "--max-seconds", "2"], 2,
         r"ran past its budget of 2 s \(--max-seconds\)", "budget", 10)
-    if not wait_for(lambda: not survivors(marker), 3):
+    if not wait_for(lambda: not survivors(marker), 10):
         problems.append(f"budget: processes survived vivv: {survivors(marker)}")
 
     for problem in problems:
