@@ -3,6 +3,7 @@
 # Fails unless COMMAND exits with EXPECTED_EXIT, its output matches PATTERN and not FORBIDDEN,
 # NO_FILE (a report that must not be written) does not exist, and every claim of REPORT has the
 # verdict VERDICTS pins for it (below).
+cmake_minimum_required(VERSION 3.20)  # IN_LIST, string(JSON)
 if(DEFINED NO_FILE)
   file(REMOVE ${NO_FILE})
 endif()
