@@ -56,8 +56,9 @@ vivv="$work/build/harness/vivv"
   { tail -60 "$work/suite.log"; exit 1; }
 grep "claims:" "$work/suite.log"
 
-# Each case of tests/negative, tests/boundary and tests/inconclusive must exit 1 and each of
-# tests/bad_cases 2, as in ctest, with no sanitizer report: one case per core at a time.
+# Each case of tests/negative, tests/boundary and tests/inconclusive must exit 1, each of
+# tests/controls 0 and each of tests/bad_cases 2, as in ctest, with no sanitizer report: one case
+# per core at a time.
 run_case() {  # run_case CASE_FILE EXPECTED_EXIT OUT_DIR
   local code=0
   "$vivv" run "$1" --out "$3" --quiet > "$3.log" 2>&1 || code=$?
@@ -68,7 +69,7 @@ run_case() {  # run_case CASE_FILE EXPECTED_EXIT OUT_DIR
 export -f run_case
 export vivv
 cases=0
-for directory_exit in negative:1 boundary:1 inconclusive:1 bad_cases:2; do
+for directory_exit in negative:1 boundary:1 inconclusive:1 controls:0 bad_cases:2; do
   directory=${directory_exit%:*} expected=${directory_exit#*:}
   mkdir -p "$work/cases/$directory"
   for case_file in "$source_dir/tests/$directory"/*.json; do

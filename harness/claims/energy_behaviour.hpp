@@ -25,6 +25,12 @@
 // by less than (h_fine/h_coarse)³ — so a drift a power h^(r+1) … h^(r+3) below the
 // oscillation still fails. It holds when the finest h is quiet (or at the floor),
 // and is inconclusive otherwise, saying what would decide it.
+//
+// The energy error must also converge: its size max_k |E_k − E_0| over [0, T] is judged by the
+// order rule against h^r (r the map's order, one less for a mismatched DEL, and at least 1), or
+// must lie at the rounding level at every h (the midpoint rule on a quadratic L conserves energy
+// exactly). A drift-free energy error that does not fall with h — the map of an inconsistent
+// scheme, h where h/2 belongs in one term — fails, whatever its drift.
 #pragma once
 
 #include "core/energy.hpp"
@@ -233,6 +239,20 @@ std::string energy_drift_limit(const CaseContext<System>& context,
                                const std::vector<EnergyDrift<typename System::Scalar>>& runs,
                                std::size_t i, const std::string& quantity);
 
+// " (N = a, b, … for T = t)": the case's step counts scaled from T to `longer`, so that advice to
+// run longer keeps h (a longer T at the same N is a coarser sweep, and would judge other steps).
+template <LagrangianSystem System>
+std::string scaled_step_counts(const CaseContext<System>& context, const typename System::Scalar& longer) {
+  using std::ceil;
+  using T = typename System::Scalar;
+  const T factor = longer / context.final_time;
+  std::string counts;
+  for (int N : context.spec.steps)
+    counts += (counts.empty() ? "" : ", ") +
+              format_scalar(T(ceil(T(factor * T(N)))), 12);
+  return " (N = " + counts + " for T = " + format_scalar(longer, 3) + ")";
+}
+
 // The verdict over the sweep on how `quantity` (the energy error, or the modified energy's)
 // behaves at each h (`runs`), as a series of the drifts D with its per-step rows in `evidence`:
 // fail when two consecutive h drift and the drift keeps pace with the quantity's spread, pass
@@ -322,7 +342,8 @@ Series energy_drift_series(const CaseContext<System>& context,
     series.to_decide =
         "T >= " + format_scalar(needed, 3) +
         " (at least 4 complete returns of the motion; T = " + format_scalar(final_time, 6) +
-        " holds " + std::to_string(last.cycles()) + ")";
+        " holds " + std::to_string(last.cycles()) + ") with the same step sizes: the step counts " +
+        "scaled with T" + scaled_step_counts(context, needed);
     series.explanation =
         "the motion returns to its section only " + std::to_string(last.returns) +
         " times in T at the finest " + at(finest) +
@@ -338,6 +359,8 @@ Series energy_drift_series(const CaseContext<System>& context,
                          "; to decide: " + series.to_decide;
   } else {
     series.to_decide = "T >= " + format_scalar(T(2 * final_time), 3) +
+                       " with the same step sizes: the step counts scaled with T" +
+                       scaled_step_counts(context, T(2 * final_time)) +
                        " (a drift grows with T, a slow oscillation does not)";
     series.explanation =
         quantity + ", averaged over returns, trends by " + format_scalar(last.drift) +
@@ -366,13 +389,40 @@ std::string energy_drift_limit(const CaseContext<System>& context,
          ", falling with h like " + quantity + ", would have failed";
 }
 
+// The energy error's size max_k |E_k − E_0| over [0, T] at each h, judged by the order rule against
+// h^r (a lower bound: r the map's order, one less for a mismatched DEL, at least 1: "it falls"),
+// against a floor a thousand times the rounding ρ the drift rule uses at the finest h: at the
+// rounding level at every h it vanishes to working precision (energy conserved exactly).
+template <LagrangianSystem System>
+Series energy_size_series(const CaseContext<System>& context,
+                          const std::vector<EnergyDrift<typename System::Scalar>>& runs,
+                          const std::vector<typename System::Scalar>& largest_error) {
+  using T = typename System::Scalar;
+  using std::max;
+  T rounding = 0;
+  for (const auto& run : runs) rounding = max(rounding, run.rounding);
+  Floor<T> floor;
+  floor.rounding = T(1000) * rounding;
+  floor.reference = 0;  // E_k − E_0 involves no reference
+  floor.n_max = static_cast<long double>(context.spec.steps.back());
+  floor.scale = static_cast<long double>(rounding / (T(16) * epsilon<T>() * T(context.spec.steps.back())));
+  const int order = std::max(1, context.map_order() - (!context.map && !context.tq && context.scheme.mismatched ? 1 : 0));
+  Series series = sweep_series(context, "max_k |E_k − E_0| over [0, T] (the energy error's size)",
+                               largest_error, OrderPrediction{order, false}, floor);
+  if (series.holds && !*series.holds && !series.inconclusive)
+    series.explanation += "; an energy error that does not fall with h like h^" + std::to_string(order) +
+                          " does not converge to the energy's conservation, whatever its drift";
+  return series;
+}
+
 struct EnergyBehaviourClaim : Claim<EnergyBehaviourClaim> {
   static constexpr const char* id = "energy-behaviour";
   static constexpr const char* source = "Hairer–Lubich–Wanner ch. IX (backward error analysis); Marsden–West §1.3.4";
   static constexpr const char* prediction =
       "the energy error E_k − E_0 stays bounded without drift: averaged over the motion's returns "
       "to a section, it "
-      "shows no linear trend above its scatter that falls with h like the energy error itself";
+      "shows no linear trend above its scatter that falls with h like the energy error itself; "
+      "and its size max_k |E_k − E_0| falls at least like h^r (or is at the rounding level)";
 
   template <LagrangianSystem System>
   static ClaimResult evaluate(const CaseContext<System>& context) {
@@ -437,9 +487,12 @@ struct EnergyBehaviourClaim : Claim<EnergyBehaviourClaim> {
         "× noise; fails when two consecutive h drift with D / (max e − min e) falling by less than "
         "(h ratio)³";
     claim.series.push_back(energy_drift_series(context, runs, "the energy error", claim.evidence));
-    claim.series.push_back(
-        sweep_series(context, "max_k |E_k − E_0| (the energy error's size, fitted, not judged)",
-                     largest_error, std::nullopt));
+    claim.series.push_back(energy_size_series(context, runs, largest_error));
+    claim.evidence["size_rule"] =
+        "max_k |E_k − E_0| over [0, T] must fall at least like h^r (the order rule, r the map's "
+        "order, one less for a mismatched DEL, at least 1), or lie at the rounding level "
+        "ρ = N × 16 ulps × max(|E_0|, |p·w|) at every h: an energy error that does not converge "
+        "fails, whatever its drift";
     conclude(claim);
     return claim;
   }
