@@ -55,6 +55,10 @@ struct FitOptions {
 struct OrderVerdict {
   bool holds = false;
   bool inconclusive = false;
+  // Inconclusive because the pairwise orders move away from the prediction (receding evidence),
+  // and the halvings of h estimated to decide it: --refine goes on in exactly that case.
+  bool receding = false;
+  int halvings_to_decide = 0;
   std::string to_decide;
   std::string explanation;
   std::string detection_limit;  // the orders that would have failed and the fit's resolution
@@ -158,7 +162,24 @@ bool order_agrees(double order, double predicted, bool exact, double tolerance);
 // converging on the prediction, an error that dips between the two finest steps, or two points
 // above the floor with the smaller steps hidden below it (docs/claims.md); and instead of a pass
 // where the fit's interval cannot tell the prediction from the next integer order.
+// Before a pass, the evidence must not recede: where the pairwise orders above the floor move away
+// from the prediction by more than receding_noise (or toward it on a course that ends beyond the
+// tolerance), the verdict is inconclusive, never a pass, and names the halvings of h that decide.
+// Rising orders that converge on the prediction, the finest within the tolerance, while the fit
+// still lags are inconclusive too (a short sweep: one more halving decides). Every verdict's
+// detection limit names the smallest lower-order term b·h_min/h (its share of the error at the
+// smallest h) that would not have passed.
 OrderVerdict judge_order(const OrderFit& fit, double predicted, bool exact, double tolerance);
+
+// The noise of a pairwise order of a correct method above the floor: a point there is rounded by
+// at most 10⁻³ of its error (the floor is 1000 times the rounding), which moves a pairwise order at
+// h ratio 2 by at most 0.003; the correct methods of the default suite, the examples and the
+// controls move their last pairwise order away from the prediction by at most 0.0002.
+constexpr double receding_noise = 0.01;
+
+// The smallest b for which e(h) = h^p·(1 + b·h_min/h), on the step sizes of `fit` above the floor,
+// would not pass judge_order (NaN where none up to 10³ fails it, or the fit has no steps).
+double lower_order_detection_limit(const OrderFit& fit, double predicted, bool exact, double tolerance);
 
 // x written with `digits` significant digits, as a stream writes T ("1.2e-61", "0.5").
 template <class T>

@@ -22,6 +22,14 @@ std::optional<std::string> unsettled_series(const std::vector<ClaimResult>& clai
       const bool floor_reached = fit.sorted.empty() || fit.used.empty() ||
                                  std::find(fit.used.begin(), fit.used.end(), fit.sorted.back()) == fit.used.end();
       if (floor_reached || !fit.ok) continue;
+      // Evidence that cannot decide yet — receding orders above all, which must never settle by
+      // dropping points until an interval widens — is unsettled: halving h decides it.
+      const OrderVerdict verdict =
+          judge_order(fit, *series.predicted_order, series.exact_order, tolerance);
+      if (verdict.inconclusive)
+        return claim.id + " / " + series.label + ": " +
+               (verdict.receding ? "receding pairwise orders" : "inconclusive") + " (" +
+               verdict.to_decide + ")";
       const auto& finest = fit.finest_orders;
       const bool steady = finest.size() == 2 && std::isfinite(finest[0]) && std::isfinite(finest[1]) &&
                           std::fabs(finest[1] - finest[0]) <= tolerance / 4 &&

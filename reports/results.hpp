@@ -34,6 +34,10 @@ struct OrderFit {
   double log_constant = NAN;     // intercept: e ≈ C h^order, log C
   std::vector<int> sorted;       // every index, by decreasing h (ties in the caller's order)
   std::vector<double> pairwise_orders;  // between sorted[k] and sorted[k+1]; NaN where undefined
+  std::vector<double> log_h;            // log h of sorted[k] (the verdict's detection limit)
+  // How many of `sorted`, from the largest h, lie above the floor (none masked or dropped at it):
+  // the points whose pairwise orders show where the sweep is heading.
+  int above_floor = 0;
   std::vector<int> used;                // indices used in the fit, ascending
   // The last FitOptions::finest_orders pairwise orders between consecutive used points
   // (largest h first): the small-h end, where an asymptotic statement lives.
