@@ -795,6 +795,9 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
                                         spec.discretization.kind + "\" is a one-step map without one: a map takes " + join(std::vector<std::string>(
                                             map_claim_ids().begin(), map_claim_ids().end())));
     bool tq = spec.discretization.formalism == "tq";
+    if (tq && id == "local-order")
+      throw CaseError(file, where, "local-order measures one step of a map; on a discretization of TQ that "
+                                   "measurement is the claim \"order\" (paper Thm 5.5): list \"order\" instead");
     if (!tq && tq_claim_ids().count(id))
       throw CaseError(file, where, id + " is a claim about discretizations of TQ: needs discretization.formalism \"tq\"");
     if (tq && qxq_claim_ids().count(id))

@@ -31,7 +31,8 @@ inline const std::vector<std::string>& claim_ids() {
       "global-order",       "lagrangian-order",    "legendre-order", "twin-term-invariance",
       "mismatched-legendre", "order",              "contact-order",  "qxq-tq-equivalence",
       "existence-uniqueness", "exact-discretization", "past-future-symmetry", "symplecticity",
-      "discrete-noether",   "energy-behaviour",    "modified-energy", "precision-leak"};
+      "discrete-noether",   "energy-behaviour",    "modified-energy", "precision-leak",
+      "local-order"};
   return ids;
 }
 
@@ -53,8 +54,8 @@ inline const std::set<std::string>& tq_claim_ids() {
 // Claims that apply to a one-step map (discretization kind "odeint"): the others are about
 // the discrete Lagrangian a map does not have.
 inline const std::set<std::string>& map_claim_ids() {
-  static const std::set<std::string> ids = {"global-order", "symplecticity", "energy-behaviour", "discrete-noether",
-                                            "precision-leak"};
+  static const std::set<std::string> ids = {"global-order", "local-order", "symplecticity", "energy-behaviour",
+                                            "discrete-noether", "precision-leak"};
   return ids;
 }
 

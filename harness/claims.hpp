@@ -12,6 +12,7 @@
 #include "harness/claims/exact_discretization.hpp"
 #include "harness/claims/global_order.hpp"
 #include "harness/claims/local_consistency.hpp"
+#include "harness/claims/map_local_order.hpp"
 #include "harness/claims/modified_energy.hpp"
 #include "harness/claims/past_future_symmetry.hpp"
 #include "harness/claims/precision_leak.hpp"
@@ -26,7 +27,7 @@ using ClaimRegistry =
                MismatchedLegendreClaim, LocalOrderClaim, ContactOrderClaim, QxQTQEquivalenceClaim,
                ExistenceUniquenessClaim, ExactDiscretizationClaim, PastFutureSymmetryClaim,
                SymplecticityClaim, DiscreteNoetherClaim, EnergyBehaviourClaim,
-               ModifiedEnergyClaim, PrecisionLeakClaim>;
+               ModifiedEnergyClaim, PrecisionLeakClaim, MapLocalOrderClaim>;
 
 struct ClaimInfo {
   std::string id, source, prediction;
