@@ -89,7 +89,11 @@ tail -1 "$work/fuzz.log"
 # and signals, tests/check_process_maps.py) run again here, at about a third of the plain build's
 # speed: a check at another speed, with this build's vivv, and no sanitizer report allowed (one
 # exits 86, which no expected exit code is).
-(cd "$work/build" && ctest -L timing --output-on-failure) > "$work/timing.log" 2>&1 ||
+# AddressSanitizer would catch the SIGSEGV the interrupt check sends a --jobs worker and end it with
+# its own report (exit 2 for the run instead of 3 naming the signal): here, and only here, a
+# SIGSEGV is left to kill the process as it would in the plain build.
+(cd "$work/build" && ASAN_OPTIONS="$ASAN_OPTIONS:handle_segv=0" ctest -L timing --output-on-failure) \
+  > "$work/timing.log" 2>&1 ||
   { tail -60 "$work/timing.log"; exit 1; }
 grep -E "tests passed|tests failed" "$work/timing.log"
 echo "sanitizers clean: the default suite, the test cases, the fuzz corpus and the timing tests"
