@@ -180,11 +180,11 @@ int halvings_to_cross(const Recession& recession, double predicted, bool exact, 
   return halvings;
 }
 
-// A short sweep still rising toward p: every pairwise order above the floor up to the finest
-// point of the fit rises, the finest within the tolerance (with two orders, within it once the
-// rise is repeated at half its size), and the rise slows (each change below the one before). A correct midpoint showed 1.66, 1.93 with
-// three step counts, and 1.36, 1.69, 1.92 at N = 3 … 24 (changes contracting by 0.70): one more
-// halving decides. Orders that rise by growing steps (1.0, 1.3, 1.75) approach nothing.
+// A short sweep still rising toward p: every pairwise order above the floor rises, the finest
+// within the tolerance (with two orders, within it once the rise is repeated at half its size),
+// and the rise slows (each change below the one before). A correct midpoint showed 1.66, 1.93
+// with three step counts, and 1.36, 1.69, 1.92 at N = 3 … 24 (changes contracting by 0.70): one
+// more halving decides. Orders that rise by growing steps (1.0, 1.3, 1.75) approach nothing.
 std::optional<std::vector<double>> rising_toward(const OrderFit& fit, double predicted,
                                                  bool exact, double tolerance) {
   const std::vector<double> o = orders_above_floor(fit);
