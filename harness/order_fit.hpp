@@ -1,4 +1,5 @@
-// Observed order of convergence (docs/theory.md (observed orders)).
+// Observed order of convergence (docs/theory.md (observed orders)): the fit in order_fit.cpp,
+// the verdict judge_order in order_verdict.cpp.
 //
 // A sweep gives step sizes h_i and errors e_i. The observed order is the
 // least-squares slope of log e against log h over the asymptotic range only:
