@@ -102,6 +102,12 @@ inline bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
+// Decided against the prediction: not a pass, and not inconclusive either.
+inline void expect_fails(const OrderVerdict& verdict) {
+  EXPECT_FALSE(verdict.holds) << verdict.explanation;
+  EXPECT_FALSE(verdict.inconclusive) << verdict.explanation;
+}
+
 // Not a pass, inconclusive, the explanation naming `why` and what decides it naming --refine.
 inline void expect_inconclusive_until_refined(const OrderVerdict& verdict, const std::string& why) {
   EXPECT_FALSE(verdict.holds) << verdict.explanation;
