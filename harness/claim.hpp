@@ -103,6 +103,12 @@ struct PerStepCheck {
   std::string
       scaling_failure;  // truncation_scaling's finding, when the values fall like a power of h
   std::string scaling_limit;  // what the scaling test would have caught
+  // Beyond the tolerance, but in a way the evidence cannot tell from rounding: why, and what
+  // would decide (the claim is then inconclusive, not failed).
+  struct Undecided {
+    std::string why, to_decide;
+  };
+  Undecided undecided;
   std::vector<T> tolerances;
   T smallest_tolerance = 0, largest_tolerance = 0;
 
@@ -144,6 +150,11 @@ struct PerStepCheck {
     series.holds = holds && scaling_failure.empty();
     series.explanation = *series.holds ? held : !holds ? failed : scaling_failure;
     if (!holds && !scaling_failure.empty()) series.explanation += "; and " + scaling_failure;
+    if (!holds && scaling_failure.empty() && !undecided.why.empty()) {
+      series.inconclusive = true;
+      series.to_decide = undecided.to_decide;
+      series.explanation = undecided.why + "; to decide: " + undecided.to_decide;
+    }
     series.detection_limit = detection_limit();
     claim.series.push_back(series);
     conclude(claim);

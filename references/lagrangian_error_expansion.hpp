@@ -24,6 +24,21 @@
 
 namespace vivv {
 
+// The first `terms` coefficients of discrete − action, and with `sizes` max(|discrete_k|,
+// |action_k|) for each.
+template <class T>
+std::vector<T> difference_coefficients(const PowerSeries<T>& discrete, const PowerSeries<T>& action,
+                                       int terms, std::vector<T>* sizes) {
+  using std::abs, std::max;
+  std::vector<T> out(terms);
+  if (sizes) sizes->assign(terms, T(0));
+  for (int k = 0; k < terms; ++k) {
+    out[k] = discrete.coefficient(k) - action.coefficient(k);
+    if (sizes) (*sizes)[k] = max(abs(discrete.coefficient(k)), abs(action.coefficient(k)));
+  }
+  return out;
+}
+
 // q(h) = Σ_k q_k h^k, its first `length` coefficients, of the Euler–Lagrange solution through
 // (q0, w0) (Taylor-mode AD of the system's L, core/taylor_curve.hpp).
 template <LagrangianSystem System>
@@ -49,11 +64,14 @@ Point<PowerSeries<typename System::Scalar>, System::dimension> solution_series(
 // rule a second time: it checks the measured coefficient (shooting, quadrature, the tape run in
 // T) against the same formula expanded exactly, so one rule gets one verdict whichever way it
 // is written. Throws std::domain_error where the formula has no expansion at this state.
+// With `sizes`, also the size of the two sides of each coefficient, max(|L_d's|, |the action's|):
+// the terms that cancel in E_k, from which its rounding unit comes (exact_coefficient_check).
 template <LagrangianSystem System>
 std::vector<typename System::Scalar> expression_error_expansion(
     const System& system, const QxQDiscretization<typename System::Scalar>& d,
     const Vector<typename System::Scalar, System::dimension>& q0,
-    const Vector<typename System::Scalar, System::dimension>& w0, int terms) {
+    const Vector<typename System::Scalar, System::dimension>& w0, int terms,
+    std::vector<typename System::Scalar>* sizes = nullptr) {
   using T = typename System::Scalar;
   using P = PowerSeries<T>;
   using K = KnownSeries<T>;
@@ -73,25 +91,26 @@ std::vector<typename System::Scalar> expression_error_expansion(
     const K discrete = d.expression->evaluate_first(x.data());
     if (discrete.known < terms) continue;
     const P along = system.lagrangian(q, w);
-    P error = discrete.series;
-    for (int k = 1; k < length; ++k) error[k] -= along[k - 1] / k;
+    P action(T(0), length);
+    for (int k = 1; k < length; ++k) action[k] = along[k - 1] / k;
+    P sum = discrete.series;
     if (d.twin)  // + a·h^s·(q(h) − q(0))
       for (int i = 0; i < n; ++i)
-        error = error + (d.twin->a[i] * (q[i] - P(q0[i], length))).shifted(d.twin->power);
-    std::vector<T> out(terms);
-    for (int k = 0; k < terms; ++k) out[k] = error.coefficient(k);
-    return out;
+        sum = sum + (d.twin->a[i] * (q[i] - P(q0[i], length))).shifted(d.twin->power);
+    return difference_coefficients(sum, action, terms, sizes);
   }
   throw std::domain_error("the formula's divisions by h leave fewer than " + std::to_string(terms) +
                           " coefficients of its expansion known");
 }
 
-// E_0 … E_{terms−1} of E(h) for the discretization `d` along the solution through (q0, w0).
+// E_0 … E_{terms−1} of E(h) for the discretization `d` along the solution through (q0, w0);
+// with `sizes`, the size of each coefficient's two sides as in expression_error_expansion.
 template <LagrangianSystem System>
 std::vector<typename System::Scalar> lagrangian_error_expansion(
     const System& system, const QxQDiscretization<typename System::Scalar>& d,
     const Vector<typename System::Scalar, System::dimension>& q0,
-    const Vector<typename System::Scalar, System::dimension>& w0, int terms) {
+    const Vector<typename System::Scalar, System::dimension>& w0, int terms,
+    std::vector<typename System::Scalar>* sizes = nullptr) {
   using T = typename System::Scalar;
   using P = PowerSeries<T>;
   constexpr int n = System::dimension;
@@ -127,17 +146,14 @@ std::vector<typename System::Scalar> lagrangian_error_expansion(
       per_step = (1 - c) * system.lagrangian(q_begin, quotient) + c * system.lagrangian(q, quotient);
       break;
     case QxQRule::expression:
-      return expression_error_expansion(system, d, q0, w0, terms);
+      return expression_error_expansion(system, d, q0, w0, terms, sizes);
     case QxQRule::galerkin:  // extremized by Newton: no closed expression to expand
       throw std::invalid_argument("lagrangian_error_expansion: no independent expansion of a Galerkin L_d");
   }
   P discrete = per_step.shifted(1);
   if (d.twin)  // + a·h^s·(q(h) − q(0))
     for (int i = 0; i < n; ++i) discrete = discrete + (d.twin->a[i] * (q[i] - q_begin[i])).shifted(d.twin->power);
-  const P error = discrete - action;
-  std::vector<T> out(terms);
-  for (int k = 0; k < terms; ++k) out[k] = error.coefficient(k);
-  return out;
+  return difference_coefficients(discrete, action, terms, sizes);
 }
 
 }  // namespace vivv

@@ -323,9 +323,9 @@ nlohmann::json merge_reports(const std::vector<std::pair<std::string, nlohmann::
   nlohmann::json refused = nlohmann::json::array();
   std::map<std::string, std::string> seen;  // case name -> report it came from
   for (const auto& [file, report] : inputs) {
-    if (!report.is_object() || report.value("schema", "") != report_schema)
+    if (!readable_report_schema(report))
       throw ReportError(
-          file + ": schema: expected \"" + report_schema + "\", got " +
+          file + ": schema: expected \"" + report_schema + "\" or \"vivv-report/4\", got " +
           (report.is_object() && report.contains("schema") ? report["schema"].dump() : "none"));
     for (const auto& c : report.at("cases")) {
       std::string name = c.at("name");
@@ -447,9 +447,9 @@ nlohmann::json read_report(const std::string& path) {
   } catch (const CaseError& error) {
     throw ReportError(error.what());
   }
-  if (!report.is_object() || !report.contains("schema") || report["schema"] != report_schema)
+  if (!readable_report_schema(report))
     throw ReportError(
-        path + ": schema: expected \"" + std::string(report_schema) + "\", got " +
+        path + ": schema: expected \"" + std::string(report_schema) + "\" or \"vivv-report/4\", got " +
         (report.is_object() && report.contains("schema") ? report["schema"].dump().substr(0, 80) : "none"));
   if (!report.contains("cases") || !report["cases"].is_array() || !report.contains("run") ||
       !report["run"].is_object())

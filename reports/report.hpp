@@ -1,4 +1,4 @@
-// The report model and its renderers: report.json (schema "vivv-report/4",
+// The report model and its renderers: report.json (schema "vivv-report/5",
 // documented in reports/SCHEMA.md and reports/schema.json), the console claims
 // table, and the report directory (report.json, report.html, junit.xml).
 #pragma once
@@ -14,7 +14,15 @@
 
 namespace vivv {
 
-inline constexpr const char* report_schema = "vivv-report/4";
+inline constexpr const char* report_schema = "vivv-report/5";
+// The schemas `vivv report` and `--baseline` read: this one and the one before it (vivv-report/5
+// added the exact-coefficients rule, local-order and evidence fields to /4; every /4 report is a
+// valid /5 one).
+inline bool readable_report_schema(const nlohmann::json& report) {
+  if (!report.is_object() || !report.contains("schema")) return false;
+  const nlohmann::json& schema = report["schema"];
+  return schema == report_schema || schema == "vivv-report/4";
+}
 
 struct RunInfo {
   std::string command_line;

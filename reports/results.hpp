@@ -58,8 +58,8 @@ struct Series {
   std::optional<bool> holds;       // verdict of this series alone
   // Which rule decided `holds` (reports/SCHEMA.md): "order" (the fitted and finest pairwise orders
   // against the prediction), "floor" (fewer than two errors above the floor), "none" (not judged),
-  // or the claim's own rule ("signed-coefficient", "energy-drift", "per-step-tolerance",
-  // "does-not-converge", "step-size-search"). `vivv report` judges "order" series again.
+  // or the claim's own rule ("signed-coefficient", "exact-coefficients", "energy-drift",
+  // "per-step-tolerance", "does-not-converge", "step-size-search"). `vivv report` judges "order" series again.
   std::string rule = "none";
   // The evidence cannot decide (holds is then false): not yet asymptotic, a floor set by the
   // reference or the precision, an interval too wide. `to_decide` says what would decide it.

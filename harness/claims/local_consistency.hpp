@@ -88,6 +88,103 @@ void add_signed_coefficient(ClaimResult& claim, const CaseContext<System>& conte
   claim.series.push_back(series);
 }
 
+// Exact coefficients: an L_d of order r has E(h) = L_d(q(0), q(h); h) − ∫₀ʰ L dt = O(h^{r+1}) along
+// every solution, so each coefficient E_k, k ≤ r, of its expansion in h is zero at every state —
+// identically, not only in the limit. For a rule given as a formula (built in or written as an
+// expression) vivv expands E(h) exactly (references/lagrangian_error_expansion.hpp), so a
+// non-zero E_k decides fail without a sweep: a weight off by 10⁻³ whose h term hides in a
+// cancellation dip of the sweep, or a spurious term that vanishes at the initial state (∝ w·h
+// with w₀ = 0), shows at the states along the reference orbit. Each E_k is a difference of L_d's
+// coefficient and the action's; its rounding unit is ε times the larger of the two, and
+// `rounding_units` of them are allowed (measured on correct rules: docs/claims.md). Below that
+// the coefficient vanishes to working precision and the sweep decides alone.
+template <LagrangianSystem System>
+void add_exact_coefficients(ClaimResult& claim, const CaseContext<System>& context, int r) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  using std::abs, std::max, std::pow;
+  constexpr int states = 4;
+  const T rounding_units = 1024;
+  // E_k at each state, and the size of the terms it is computed from: the larger of L_d's and the
+  // action's coefficient, largest over the states (L itself may cancel at one of them: T ≈ V),
+  // and for E_1 = L_d's h term − L(q, w) the sizes of p·w and p·w − L, L's kinetic and
+  // potential parts on a natural system.
+  std::vector<std::vector<T>> expansions;
+  std::vector<T> times, size(static_cast<std::size_t>(r + 1), T(0));
+  for (int j = 0; j < states; ++j) {
+    const T t = context.final_time * T(j) / T(states);
+    const State<T, n> x = j == 0 ? context.initial : context.reference.advance(context.initial, t);
+    std::vector<T> sizes;
+    try {
+      expansions.push_back(
+          lagrangian_error_expansion(context.system, context.scheme.future, x.q, x.w, r + 1, &sizes));
+    } catch (const std::domain_error& e) {
+      claim.evidence["exact_coefficients"] = "not compared: at t = " + format_scalar(t, 4) + ", " + e.what();
+      return;
+    }
+    times.push_back(t);
+    for (int k = 0; k <= r; ++k) size[k] = max(size[k], sizes[k]);
+    if (r >= 1) {
+      const Vector<T, n> p = momentum(context.system, x.q, x.w);
+      T pw = 0;
+      for (int i = 0; i < n; ++i) pw += p[i] * x.w[i];
+      size[1] = max(size[1], max(abs(pw), abs(T(pw - context.system.lagrangian(as_point<T, n>(x.q), as_point<T, n>(x.w))))));
+    }
+  }
+  const std::vector<T> steps = context.steps();
+  std::vector<T> part(steps.size(), T(0)), allowed(steps.size(), T(0));
+  nlohmann::json rows = nlohmann::json::array();
+  std::string failure;
+  T worst = 0;  // the largest |E_k| in rounding units ε·size_k
+  for (int j = 0; j < states; ++j) {
+    const std::vector<T>& expansion = expansions[j];
+    nlohmann::json coefficients = nlohmann::json::array();
+    for (int k = 0; k <= r; ++k) {
+      const T unit = epsilon<T>() * size[k];
+      const T magnitude = abs(expansion[k]);
+      if (magnitude > 0) worst = max(worst, unit > 0 ? T(magnitude / unit) : T(INFINITY));
+      coefficients.push_back({{"k", k}, {"E_k", to_decimal<T>(expansion[k], 8)}});
+      if (magnitude > rounding_units * unit && failure.empty())
+        failure = "the coefficient of h^" + std::to_string(k) + " of L_d − L_d^E is " + format_scalar(expansion[k], 4) +
+                  " at the state x(" + format_scalar(times[j], 4) + ") of the reference orbit, where rounding allows " +
+                  format_scalar(T(rounding_units * unit), 3) + ": L_d is not of order " + std::to_string(r) +
+                  " (every coefficient of h^k, k ≤ " + std::to_string(r) + ", vanishes for an order-" +
+                  std::to_string(r) + " L_d)";
+    }
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+      T sum = 0, bound = 0;
+      for (int k = 0; k <= r; ++k) {
+        sum += expansion[k] * pow(steps[i], k);
+        bound += rounding_units * epsilon<T>() * size[k] * pow(steps[i], k);
+      }
+      part[i] = max(part[i], abs(sum));
+      allowed[i] = max(allowed[i], bound);
+    }
+    rows.push_back({{"t", to_decimal<T>(times[j], 8)}, {"coefficients", coefficients}});
+  }
+  nlohmann::json units = nlohmann::json::array();
+  for (int k = 0; k <= r; ++k) units.push_back(to_decimal<T>(T(epsilon<T>() * size[k]), 3));
+  claim.evidence["exact_coefficients"] = rows;
+  claim.evidence["exact_coefficients_rounding_unit"] = units;
+  claim.evidence["exact_coefficients_largest_in_rounding_units"] = format_scalar(worst, 3);
+  Floor<T> floor;
+  floor.rounding = allowed.front();
+  Series series = make_series("|Σ_{k≤r} E_k h^k| (the terms of L_d − L_d^E that must vanish, from its exact expansion)",
+                              steps, part, floor, std::nullopt, false, context.order_tolerance, context.fit_options);
+  series.rule = "exact-coefficients";
+  series.holds = failure.empty();
+  series.explanation =
+      failure.empty() ? "every coefficient of h^k, k ≤ " + std::to_string(r) + ", vanishes to rounding at " +
+                            std::to_string(states) + " states x(j·T/" + std::to_string(states) +
+                            ") of the reference orbit (the largest is " + format_scalar(worst, 3) + " of the " +
+                            format_scalar(rounding_units, 4) + " rounding units allowed)"
+                      : failure;
+  series.detection_limit = "a coefficient E_k, k ≤ " + std::to_string(r) + ", larger than " +
+                           format_scalar(rounding_units, 4) + " rounding units ε·(the size of its terms) at one of " +
+                           std::to_string(states) + " states fails";
+  claim.series.push_back(series);
+}
+
 struct LagrangianOrderClaim : Claim<LagrangianOrderClaim> {
   static constexpr const char* id = "lagrangian-order";
   static constexpr const char* source = "Marsden–West Def. 2.3.1; paper §2.2";
@@ -136,11 +233,15 @@ struct LagrangianOrderClaim : Claim<LagrangianOrderClaim> {
     std::vector<T> error;
     for (const T& e : signed_error) error.push_back(abs(e));
     claim.series.push_back(sweep_series(context, "|L_d − L_d^E|", error, predicted(context)));
-    if (context.scheme.future.rule == QxQRule::galerkin)
+    if (context.scheme.future.rule == QxQRule::galerkin) {
       claim.evidence["leading_coefficient_rule"] =
           "not compared: a Galerkin L_d is extremized by Newton, with no closed expression to expand";
-    else if constexpr (TapeRecordable<System>)
+      claim.evidence["exact_coefficients"] =
+          "not checked: a Galerkin L_d has no closed expression to expand; the sweep alone judges it";
+    } else if constexpr (TapeRecordable<System>) {
       add_signed_coefficient(claim, context, signed_error);
+      add_exact_coefficients(claim, context, predicted(context).order - 1);
+    }
     conclude(claim);
     return claim;
   }
