@@ -86,7 +86,7 @@ python3 "$source_dir/tests/fuzz/fuzz_inputs.py" "$vivv" "$source_dir/tests/fuzz/
 tail -1 "$work/fuzz.log"
 # The tests whose outcome involves wall time (ctest label "timing": --max-seconds budgets,
 # progress heartbeats, signals while a run computes, and the process protocol's faults, timeouts
-# and signals, tests/check_process_maps.py) run again here, at about a third of the plain build's
+# and signals, tests/process/check_process_maps.py) run again here, at about a third of the plain build's
 # speed: a check at another speed, with this build's vivv, and no sanitizer report allowed (one
 # exits 86, which no expected exit code is).
 # AddressSanitizer would catch the SIGSEGV the interrupt check sends a --jobs worker and end it with

@@ -1,7 +1,7 @@
 """Explicit Euler, q' = q + h·p, p' = p + h·F(q), for vivv's process protocol (vivv-map/1): a
 first-order map that is neither symplectic nor, on Kepler, angular-momentum conserving. Every
 claim a program's map can be checked by fails or passes on it for the map's own reasons, and
-tests/check_process_words.py reads each explanation for words of a discrete Lagrangian.
+tests/process/check_process_words.py reads each explanation for words of a discrete Lagrangian.
 """
 import os
 import sys

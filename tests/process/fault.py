@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """A map program for vivv's process protocol (vivv-map/1) that breaks it in the way its first
-argument names, after answering `good` requests properly (tests/check_process_maps.py).
+argument names, after answering `good` requests properly (tests/process/check_process_maps.py).
 
 usage: fault.py MODE [GOOD] [MARKER]
 

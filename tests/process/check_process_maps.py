@@ -19,11 +19,12 @@ import sys
 import time
 import uuid
 
+HERE = pathlib.Path(__file__).resolve().parent.parent  # tests/
+sys.path.insert(0, str(HERE))
 # The signals' default action in the child: a background shell leaves SIGINT ignored, and vivv
 # rightly keeps an ignored signal ignored (tests/check_interrupt.py).
-from check_interrupt import default_signals
+from check_interrupt import default_signals  # noqa: E402
 
-HERE = pathlib.Path(__file__).resolve().parent
 FAULT = HERE / "process" / "fault.py"
 TIMEOUT = 2  # --process-timeout for the fault cases
 
