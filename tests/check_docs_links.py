@@ -3,8 +3,10 @@
 usage: check_docs_links.py REPOSITORY_ROOT
 
 Checks markdown links [text](target) and inline-code paths that start with
-"../" in README.md and docs/*.md; exits 1 naming each link that leaves the
-repository or names a file that does not exist.
+"../" in README.md and docs/*.md, and in docs/architecture.md every inline-code
+path under a top-level folder (`core/...`, `harness/...`): its table says which
+files an addition touches, so each must exist. Exits 1 naming each link that
+leaves the repository or names a file that does not exist.
 """
 import pathlib
 import re
@@ -20,6 +22,10 @@ def main(argv):
     for page in [root / "README.md", *sorted((root / "docs").glob("*.md"))]:
         text = page.read_text()
         targets = re.findall(r"\[[^\]\n]*\]\(([^)#\s,]+)(?:#[^)\s]*)?\)", text) + re.findall(r"`(\.\./[^`\s]*)`", text)
+        if page.name == "architecture.md":
+            for path in re.findall(r"`((?:core|references|cases|harness|reports|tests|bench|examples|docs)/[^`\s*]*)`", text):
+                if not (root / path).exists():
+                    problems.append(f"{page.relative_to(root)}: `{path}` does not exist")
         for target in targets:
             if re.match(r"[a-z]+:", target):
                 continue  # an absolute URL
