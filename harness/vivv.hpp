@@ -96,7 +96,7 @@ struct Run {
   nlohmann::json report;
 };
 
-// The options of `vivv run` a program can give vivv::run (harness/main.cpp's --help says more).
+// The options of `vivv run` a program can give vivv::run (`vivv run --help`, harness/command_line/options.cpp, says more).
 struct RunOptions {
   std::optional<int> digits;          // --digits: MPFR digits for every case (20 … 1000)
   std::optional<std::string> scalar;  // --scalar: double, "long double", float128 or mpfr

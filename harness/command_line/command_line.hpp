@@ -1,0 +1,95 @@
+// The command line of the vivv tool: what its commands share — the exit codes, bad input, the
+// options of `vivv run` and the reports they write. One file per command beside this header
+// (command_run.cpp, command_report.cpp, command_list.cpp), the options and help texts in
+// options.cpp, the --jobs workers, signals and the --max-seconds budget in workers.cpp;
+// harness/main.cpp dispatches. Not part of the library the package installs.
+#pragma once
+
+#include <unistd.h>
+
+#include <iosfwd>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cases/case_file.hpp"
+#include "harness/baseline.hpp"
+
+namespace vivv::command_line {
+
+constexpr int exit_pass = 0, exit_fail = 1, exit_bad_input = 2;
+// A --jobs worker ended by a signal (a crash, the kernel's out-of-memory killer): not the
+// input's fault, and no verdict either.
+constexpr int exit_crash = 3;
+struct WorkerCrash : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct BadInput : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// The message of bad input on stderr, at most 2000 characters of it (a hostile input's value
+// would otherwise be echoed whole); exit 2.
+int bad_input(const std::string& message);
+
+// --shard I/N: the cases at positions I − 1, I − 1 + N, I − 1 + 2N, ... of the suite.
+struct Shard {
+  int index = 1, count = 1;
+};
+
+struct RunOptions {
+  std::vector<std::string> case_files;
+  std::string out = "vivv-report";
+  std::optional<int> digits;
+  std::optional<std::string> scalar;
+  int jobs = 1;
+  std::optional<Shard> shard;
+  std::optional<int> max_seconds;  // --max-seconds: each case's budget of wall time
+  bool progress = isatty(STDERR_FILENO);
+  bool refine = false;
+  // --keep-going: a case refused as bad input while it runs is recorded as refused, the other
+  // cases keep their results, and the run still exits 2.
+  bool keep_going = false;
+  // --baseline OLD/report.json: each claim's fitted series compared with OLD's (regressed: exit 1).
+  std::optional<std::string> baseline;
+  double baseline_tolerance = default_baseline_tolerance;
+  // --allow-process: cases may start the programs they name (discretization kind "process");
+  // --process-timeout: the seconds such a program has for each answer.
+  bool allow_process = false;
+  double process_timeout = 30;
+};
+
+// The default suite: every case file in the source tree's cases/suite, sorted.
+std::string default_suite_directory();
+std::vector<std::string> default_suite();
+// The case file as report.json names it: relative to the source tree when it
+// lies inside it (the same bytes from any checkout and working directory),
+// else as given on the command line.
+std::string report_file_name(const std::string& file);
+
+RunOptions parse_run_options(const std::vector<std::string>& args);
+int usage(std::ostream& out, int code);
+int run_help(std::ostream& out);
+
+// Runs the cases in up to `jobs` worker processes (MPFR's working precision
+// is process-wide in Boost 1.74, so parallel cases need processes, not threads).
+// Each case's result, in order; under --keep-going a case refused as bad input is
+// {"refused": message} (each case then runs in a worker process, so that a --max-seconds budget
+// that ends it leaves the others).
+std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const RunOptions& options);
+
+// Before any work: DIR must be a directory vivv can create and write in.
+void check_output_directory(const std::string& out);
+// Writes DIR/report.json, report.html and junit.xml, prints the claims table;
+// the exit code of the verdicts.
+int write_reports(const std::string& out, const nlohmann::json& report);
+
+int command_run(const std::vector<std::string>& args, const std::string& command_line);
+int command_report(const std::vector<std::string>& args, const std::string& command_line);
+int command_list();
+
+}  // namespace vivv::command_line

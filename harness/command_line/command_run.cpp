@@ -1,0 +1,158 @@
+// `vivv run`: read and check every case, compute the selected ones, compare with a baseline, write
+// the reports.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <chrono>
+#include <condition_variable>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <iterator>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "harness/baseline.hpp"
+#include "harness/command_line/command_line.hpp"
+#include "harness/map_process.hpp"
+#include "harness/rejudge.hpp"
+#include "harness/run_case.hpp"
+#include "harness/version.hpp"
+#include "reports/report.hpp"
+#include "reports/signals.hpp"
+
+namespace fs = std::filesystem;
+
+namespace vivv::command_line {
+
+// Before any work: DIR must be a directory vivv can create and write in.
+void check_output_directory(const std::string& out) {
+  std::error_code error;
+  if (fs::exists(out, error) && !fs::is_directory(out, error))
+    throw BadInput("--out: '" + out + "' exists and is not a directory");
+  fs::create_directories(out, error);
+  if (error) throw BadInput("--out: cannot create '" + out + "': " + error.message());
+  // The three files are replaced by renames at the end: one that is a directory (or a device, a
+  // FIFO) would fail there, after every case computed and with the others already replaced.
+  for (const char* name : {"report.json", "report.html", "junit.xml", "report.csv"}) {
+    const fs::path file = fs::path(out) / name;
+    const fs::file_status status = fs::symlink_status(file, error);
+    if (fs::exists(status) && !fs::is_regular_file(status) && !fs::is_symlink(status))
+      throw BadInput("--out: '" + file.string() +
+                     "' exists and is not a regular file: vivv replaces it");
+  }
+  std::string probe = (fs::path(out) / ".vivv-write-test-XXXXXX").string();
+  DeferInterrupts defer;
+  int fd = mkstemp(probe.data());
+  if (fd < 0) throw BadInput("--out: cannot write in '" + out + "'");
+  close(fd);
+  fs::remove(probe, error);
+}
+
+
+// Writes DIR/report.json, report.html and junit.xml, prints the claims table;
+// the exit code of the verdicts.
+int write_reports(const std::string& out, const nlohmann::json& report) {
+  std::vector<std::string> paths = write_report_directory(out, report);
+  print_claims_table(std::cout, report);
+  std::cout << "report:";
+  for (const auto& path : paths) std::cout << " " << path;
+  std::cout << "\n";
+  if (report.contains("refused") && !report["refused"].empty()) return exit_bad_input;
+  return run_succeeded(report["summary"]) && regressed_claims(report) == 0 ? exit_pass : exit_fail;
+}
+
+int command_run(const std::vector<std::string>& args, const std::string& command_line) {
+  RunOptions options = parse_run_options(args);
+  check_output_directory(options.out);
+  std::vector<CaseSpec> specs;
+  std::map<std::string, std::string> names;
+  for (const auto& file : options.case_files) {
+    specs.push_back(read_case_file(file));
+    auto [it, fresh] = names.emplace(specs.back().name, file);
+    if (!fresh)
+      throw CaseError(file, "name", "'" + specs.back().name + "' is also the name of " + it->second);
+  }
+  // The baseline is read (and checked like any input of vivv report) before any case computes.
+  std::optional<nlohmann::json> baseline;
+  if (options.baseline) {
+    try {
+      baseline = read_report(*options.baseline);
+    } catch (const std::exception& error) {
+      throw BadInput("--baseline: " + std::string(error.what()));
+    }
+  }
+  // The options against every case before any computes: a case they cannot run refuses the run.
+  for (const auto& spec : specs) check_precision_options(spec, options.scalar, options.digits);
+  for (auto& spec : specs)
+    permit_process(spec, options.allow_process, options.process_timeout,
+                   "vivv run --allow-process");
+  // Every case file is read and checked above, so that each shard refuses the same bad input;
+  // a shard then computes its own positions.
+  std::vector<std::size_t> positions;
+  for (std::size_t k = 0; k < specs.size(); ++k)
+    if (!options.shard || static_cast<int>(k % options.shard->count) == options.shard->index - 1)
+      positions.push_back(k);
+  std::vector<CaseSpec> selected;
+  for (std::size_t k : positions) selected.push_back(specs[k]);
+  std::vector<nlohmann::json> results = run_all(selected, options);
+  std::vector<nlohmann::json> cases;
+  std::vector<std::size_t> case_positions;
+  nlohmann::json refused = nlohmann::json::array();
+  nlohmann::json case_paths = nlohmann::json::object();  // absolute paths: run block only
+  for (std::size_t i = 0; i < selected.size(); ++i) {
+    case_paths[selected[i].name] = fs::absolute(selected[i].file).lexically_normal().string();
+    if (results[i].contains("refused")) {
+      // The message without the file it begins with (the entry names the file).
+      std::string message = results[i]["refused"].get<std::string>();
+      if (message.rfind(selected[i].file + ": ", 0) == 0)
+        message.erase(0, selected[i].file.size() + 2);
+      nlohmann::json entry = {{"file", report_file_name(selected[i].file)},
+                              {"name", selected[i].name},
+                              {"message", message}};
+      if (options.shard) entry["position"] = positions[i];
+      refused.push_back(entry);
+      continue;
+    }
+    results[i]["file"] = report_file_name(selected[i].file);
+    cases.push_back(std::move(results[i]));
+    case_positions.push_back(positions[i]);
+  }
+  nlohmann::json report = assemble_report(cases, {command_line, library_versions()});
+  if (!refused.empty()) report["refused"] = refused;
+  if (baseline)
+    compare_with_baseline(report, *baseline, *options.baseline, options.baseline_tolerance);
+  report["run"]["case_paths"] = case_paths;
+  report["run"]["overrides"] = {
+      {"digits", options.digits ? nlohmann::json(*options.digits) : nlohmann::json()},
+      {"scalar", options.scalar ? nlohmann::json(*options.scalar) : nlohmann::json()},
+      {"refine", options.refine}};
+  if (options.shard) {
+    nlohmann::json suite = nlohmann::json::array();  // every shard's check that it split the same list
+    for (const auto& spec : specs) suite.push_back(spec.name);
+    report["run"]["shard"] = {{"index", options.shard->index},
+                              {"count", options.shard->count},
+                              {"suite_size", specs.size()},
+                              {"suite", suite},
+                              {"positions", case_positions}};
+  }
+  return write_reports(options.out, report);
+}
+
+}  // namespace vivv::command_line

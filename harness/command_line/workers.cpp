@@ -1,0 +1,341 @@
+// Running the cases of `vivv run`: one at a time or in --jobs worker processes, each under its
+// --max-seconds budget, with progress lines, and the signals that stop a run cleanly.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <chrono>
+#include <condition_variable>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <iterator>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/lagrangian.hpp"
+#include "core/newton.hpp"
+#include "harness/command_line/command_line.hpp"
+#include "harness/map_process.hpp"
+#include "harness/run_case.hpp"
+#include "reports/report.hpp"
+#include "reports/signals.hpp"
+
+namespace fs = std::filesystem;
+
+namespace vivv::command_line {
+
+namespace {
+
+// --max-seconds: what the case was computing when its budget ran out (the last progress
+// message, kept where the alarm handler can write it without allocating), and the budget.
+char budget_message[512] = "";
+std::size_t budget_message_length = 0;
+int budget_seconds = 0;
+bool budget_keeps_going = false;  // --keep-going: the run goes on and writes its reports
+
+void note_phase(const std::string& file, const std::string& phase) {
+  const std::string text =
+      "vivv: " + file.substr(0, 200) + ": the case ran past its budget of " +
+      std::to_string(budget_seconds) +
+      " s (--max-seconds) while computing: " + phase.substr(0, 200) +
+      (budget_keeps_going ? "; recorded as refused (--keep-going)\n" : "; no report written\n");
+  budget_message_length = std::min(text.size(), sizeof budget_message);
+  std::memcpy(budget_message, text.data(), budget_message_length);
+}
+
+// Under --keep-going, the worker's file for the message of its refusal (-1: none).
+int refusal_fd = -1;
+
+extern "C" void budget_exhausted(int) {
+  end_map_processes();  // no map program outlives the case
+  [[maybe_unused]] auto written = ::write(STDERR_FILENO, budget_message, budget_message_length);
+  if (refusal_fd >= 0) written = ::write(refusal_fd, budget_message, budget_message_length);
+  std::_Exit(exit_bad_input);  // nothing was written
+}
+
+// Progress on stderr: elapsed seconds and what is being computed — and, while a phase runs
+// longer than 5 s without a line of its own (the exact TQ discretization's quadrature at 1000
+// digits, a step-size probe, L_d^E), a line every 5 s saying which phase is still running and
+// for how long, from a thread that only prints. Lives for one case (in its worker, after fork).
+class ProgressPrinter {
+ public:
+  using Clock = std::chrono::steady_clock;
+  static constexpr auto heartbeat = std::chrono::seconds(5);
+
+  ProgressPrinter() : started_(Clock::now()), last_line_(started_), phase_started_(started_) {
+    thread_ = std::thread([this] { beat(); });
+  }
+  ~ProgressPrinter() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+  }
+  ProgressPrinter(const ProgressPrinter&) = delete;
+  ProgressPrinter& operator=(const ProgressPrinter&) = delete;
+
+  void print(const std::string& message) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    phase_ = message;
+    last_line_ = phase_started_ = Clock::now();
+    write(message);
+  }
+
+ private:
+  void beat() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!stop_) {
+      wake_.wait_for(lock, std::chrono::milliseconds(250));
+      if (stop_ || phase_.empty() || Clock::now() - last_line_ < heartbeat) continue;
+      const double running = std::chrono::duration<double>(Clock::now() - phase_started_).count();
+      std::ostringstream line;
+      line << "… still: " << phase_ << " (" << std::fixed << std::setprecision(0) << running
+           << " s so far)";
+      write(line.str());
+      last_line_ = Clock::now();
+    }
+  }
+  void write(const std::string& message) const {
+    const double elapsed = std::chrono::duration<double>(Clock::now() - started_).count();
+    std::cerr << "[" << std::fixed << std::setprecision(1) << elapsed << " s] " << message << "\n";
+  }
+
+  const Clock::time_point started_;
+  Clock::time_point last_line_, phase_started_;
+  std::string phase_;
+  bool stop_ = false;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::thread thread_;
+};
+
+std::function<void(const std::string&)> progress_printer(bool enabled) {
+  if (!enabled) return {};
+  auto printer = std::make_shared<ProgressPrinter>();
+  return [printer](const std::string& message) { printer->print(message); };
+}
+
+// Runs one case; solver failures and non-regular Lagrangians are bad input.
+nlohmann::json run_one(const CaseSpec& spec, const RunOptions& options) {
+  try {
+    CaseSpec effective = spec;
+    if (options.scalar) effective.scalar = *options.scalar;
+    if (options.digits && effective.scalar != "mpfr")
+      throw BadInput("--digits sets the MPFR working precision, and this case runs in \"" +
+                     effective.scalar + "\"");
+    std::function<void(const std::string&)> progress = progress_printer(options.progress);
+    if (options.max_seconds) {
+      // The budget: SIGALRM after max_seconds ends the process with the phase it was in.
+      budget_seconds = *options.max_seconds;
+      note_phase(spec.file, "reading the case");
+      signal(SIGALRM, budget_exhausted);
+      alarm(static_cast<unsigned>(budget_seconds));
+      progress = [print = std::move(progress), file = spec.file](const std::string& message) {
+        note_phase(file, message);
+        if (print) print(message);
+      };
+    }
+    nlohmann::json result = case_json(run_case(effective, options.digits, options.refine, progress));
+    if (options.max_seconds) alarm(0);
+    return result;
+  } catch (const CaseError&) {
+    throw;  // names the file and the field already
+  } catch (const SolverError& error) {
+    throw BadInput(spec.file + ": " + error.what() +
+                   (error.step_sizes_probed ? "" : " (reduce h: increase the step counts)"));
+  } catch (const SingularLagrangianError& error) {
+    throw BadInput(spec.file + ": " + error.what());
+  } catch (const std::domain_error& error) {
+    throw BadInput(spec.file + ": " + error.what());
+  } catch (const std::runtime_error& error) {  // e.g. a reference flow that cannot reach T
+    throw BadInput(spec.file + ": " + error.what());
+  }
+}
+
+volatile sig_atomic_t interrupted_by = 0;
+extern "C" void note_interrupt(int signal) { interrupted_by = signal; }
+
+// While alive (the --jobs parent), SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1 and SIGUSR2 are noted
+// instead of ending the process, so that it can stop its workers and remove its temporary directory
+// first; a signal ignored when vivv started stays ignored. restore() gives back the dispositions
+// vivv started with (to the workers, and before the parent ends by the signal it noted).
+class NoteInterrupts {
+ public:
+  NoteInterrupts() {
+    for (std::size_t i = 0; i < signals_.size(); ++i) {
+      sigaction(signals_[i], nullptr, &previous_[i]);
+      if (previous_[i].sa_handler == SIG_IGN) continue;
+      struct sigaction action {};
+      action.sa_handler = note_interrupt;
+      sigemptyset(&action.sa_mask);
+      sigaction(signals_[i], &action, nullptr);
+    }
+  }
+  ~NoteInterrupts() { restore(); }
+  NoteInterrupts(const NoteInterrupts&) = delete;
+  NoteInterrupts& operator=(const NoteInterrupts&) = delete;
+  void restore() {
+    for (std::size_t i = 0; i < signals_.size(); ++i) sigaction(signals_[i], &previous_[i], nullptr);
+  }
+
+ private:
+  // Every signal whose default action ends the process and that a user or a job scheduler
+  // sends: SIGQUIT and SIGUSR1 once orphaned the workers and left the directory behind.
+  std::array<int, 6> signals_{SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2};
+  std::array<struct sigaction, 6> previous_{};
+};
+
+// Runs the cases in up to `jobs` worker processes (MPFR's working precision
+// is process-wide in Boost 1.74, so parallel cases need processes, not threads).
+// Each case's result, in order; under --keep-going a case refused as bad input is
+// {"refused": message} (each case then runs in a worker process, so that a --max-seconds budget
+// that ends it leaves the others).
+
+}  // namespace
+
+std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const RunOptions& options) {
+  std::vector<nlohmann::json> results(specs.size());
+  if (options.jobs == 1 && !options.keep_going) {
+    for (std::size_t i = 0; i < specs.size(); ++i) results[i] = run_one(specs[i], options);
+    return results;
+  }
+  // A private directory (mode 0700, unpredictable name) for the workers' results, each file
+  // created exclusively and never through a link.
+  std::string work_template = (fs::temp_directory_path() / "vivv-XXXXXX").string();
+  if (!mkdtemp(work_template.data()))
+    throw BadInput("cannot create a private temporary directory under " + fs::temp_directory_path().string());
+  fs::path work = work_template;
+  NoteInterrupts notes;
+  const pid_t parent = getpid();
+  std::map<pid_t, std::size_t> running;
+  std::string failures, crashes;
+  std::size_t next = 0;
+  // Waits for a worker to end, looking every 50 ms whether the run was interrupted.
+  auto reap = [&]() {
+    int status = 0;
+    pid_t pid = 0;
+    while ((pid = waitpid(-1, &status, WNOHANG)) == 0 && !interrupted_by) {
+      const struct timespec pause = {0, 50'000'000};
+      nanosleep(&pause, nullptr);
+    }
+    if (pid <= 0) return;  // interrupted
+    std::size_t index = running.at(pid);
+    running.erase(pid);
+    if (WIFSIGNALED(status)) {  // no message of its own: say what ended it
+      const int signal = WTERMSIG(status);
+      crashes += specs[index].file + ": its worker process was ended by signal " +
+                 std::to_string(signal) + " (" + strsignal(signal) + ")" +
+                 (signal == SIGKILL ? ", perhaps by the kernel for want of memory" : "") + "\n";
+      return;
+    }
+    if (options.keep_going && WIFEXITED(status) && WEXITSTATUS(status) == exit_bad_input) {
+      std::ifstream in(work / (std::to_string(index) + ".refused"));
+      std::string message((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      while (!message.empty() && message.back() == '\n') message.pop_back();
+      if (message.rfind("vivv: ", 0) == 0) message.erase(0, 6);  // the budget's stderr line
+      if (const std::string unwritten = "; recorded as refused (--keep-going)";
+          message.size() >= unwritten.size() &&
+          message.compare(message.size() - unwritten.size(), unwritten.size(), unwritten) == 0)
+        message.erase(message.size() - unwritten.size());
+      results[index] = {{"refused", message.empty()
+                                        ? "refused in its worker process (see the messages above)"
+                                        : message}};
+      return;
+    }
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+      failures += specs[index].file + " failed in its worker process\n";
+      return;
+    }
+    std::ifstream in(work / (std::to_string(index) + ".json"));
+    results[index] = nlohmann::json::parse(in);
+  };
+  while ((next < specs.size() || !running.empty()) && !interrupted_by) {
+    if (next < specs.size() && static_cast<int>(running.size()) < options.jobs) {
+      std::cout.flush();
+      std::cerr.flush();
+      pid_t pid = 0;
+      {
+        // The worker starts with vivv's own dispositions before any signal reaches it.
+        DeferInterrupts defer;
+        pid = fork();
+        if (pid == 0) {
+          notes.restore();
+          // A worker never outlives the run: when the parent ends, however (SIGKILL included),
+          // the kernel sends the worker SIGTERM; a parent already gone ends the worker now.
+          prctl(PR_SET_PDEATHSIG, SIGTERM);
+          if (getppid() != parent) std::_Exit(128 + SIGTERM);
+        }
+      }
+      if (pid == 0) {
+        int code = 0;
+        if (options.keep_going)
+          refusal_fd = ::open((work / (std::to_string(next) + ".refused")).c_str(),
+                              O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+        try {
+          write_exclusively(work / (std::to_string(next) + ".json"), run_one(specs[next], options).dump());
+        } catch (const std::exception& error) {
+          code = bad_input(error.what());
+          if (refusal_fd >= 0) {
+            const std::string message = std::string(error.what()).substr(0, 2000);
+            [[maybe_unused]] auto written = ::write(refusal_fd, message.data(), message.size());
+          }
+        }
+        std::_Exit(code);
+      }
+      if (pid < 0) {
+        // No worker can start (the process limit): stop those running, remove their directory,
+        // and say so; nothing is left behind.
+        const int reason = errno;
+        for (const auto& [running_pid, index] : running) kill(running_pid, SIGTERM);
+        for (const auto& [running_pid, index] : running) waitpid(running_pid, nullptr, 0);
+        std::error_code ignored;
+        fs::remove_all(work, ignored);
+        throw BadInput(std::string("cannot start a worker process for --jobs ") +
+                       std::to_string(options.jobs) + ": " + std::strerror(reason) +
+                       " (a lower --jobs, or the process limit ulimit -u, decides)");
+      }
+      running[pid] = next++;
+    } else {
+      reap();
+    }
+  }
+  if (interrupted_by) {
+    // Interrupted: stop the workers, remove what they wrote, and end by the same signal
+    // (no report is written; an earlier one stays as it was).
+    for (const auto& [pid, index] : running) kill(pid, SIGTERM);
+    for (const auto& [pid, index] : running) waitpid(pid, nullptr, 0);
+    std::error_code ignored;
+    fs::remove_all(work, ignored);
+    const int signal = interrupted_by;
+    notes.restore();
+    std::cerr << "vivv: interrupted (signal " << signal << "); no report written\n";
+    raise(signal);
+    std::_Exit(128 + signal);
+  }
+  fs::remove_all(work);
+  if (!crashes.empty())
+    throw WorkerCrash(crashes + failures + "(no report written; exit " +
+                      std::to_string(exit_crash) + ": a crash, not a verdict and not bad input)");
+  if (!failures.empty()) throw BadInput(failures + "(see the messages above)");
+  return results;
+}
+
+}  // namespace vivv::command_line
