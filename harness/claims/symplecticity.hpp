@@ -18,8 +18,9 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
   static constexpr const char* id = "symplecticity";
   static constexpr const char* source = "Marsden–West §1.3.2";
   static constexpr const char* prediction =
-      "the DEL map (q_k, p_k) ↦ (q_{k+1}, p_{k+1}) is symplectic, JᵀΩJ = Ω, at every step and every h "
-      "to working precision; so is its N-step composition";
+      "the one-step map (q_k, p_k) ↦ (q_{k+1}, p_{k+1}) — a variational integrator's DEL map, or the "
+      "case's map — is symplectic, JᵀΩJ = Ω, at every step and every h to working precision; so is "
+      "its N-step composition";
   // The rounding unit of a step: the map's blocks come out of Hessian entries of size s ~ 1/h
   // that cancel to O(1) and O(h) (B_e⁻¹·B_b, E_b + E_e·∂q'/∂q), each with an error of a few ulps
   // of s, and JᵀΩJ multiplies two such: u = ε·s·max(1, |J|)² (s = 1 for a one-step map).
