@@ -1,0 +1,146 @@
+// What the report page and its plots share (reports/html_report.cpp, reports/html/*.cpp): a
+// report's strings, escaping, the series colours, and the frame of a log-log plot — its points,
+// its series and its decade ticks.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "reports/report_text.hpp"
+
+namespace vivv::html {
+
+using nlohmann::json;
+
+inline const std::vector<std::string> series_colors = {"#1565c0", "#e07b00", "#7b1fa2",
+                                                "#00897b", "#6d4c41", "#c2185b"};
+
+inline std::string text_of(const json& object, const char* key) {
+  return object.is_object() && object.contains(key) && object[key].is_string()
+             ? object[key].get<std::string>()
+             : "";
+}
+
+inline std::string escape(const std::string& text) { return xml_escape(text); }
+
+// --- The log-log plot ------------------------------------------------------
+
+struct PlotPoint {
+  int index = 0;
+  double x = 0;             // log10 h
+  std::optional<double> y;  // log10 e; empty for e = 0
+  std::string h, error;     // the decimal strings
+  std::string status;       // used, dropped, zero, measured
+  std::string reason;       // why dropped
+};
+
+struct PlotSeries {
+  std::string label, color;
+  std::vector<PlotPoint> points;
+  std::optional<double> order, log10_constant, predicted;
+  bool exact = false;
+  std::optional<bool> holds;
+  std::string fit_failure;
+  // A value judged against its own tolerance at each h (an identity, a conserved quantity): no
+  // order is fitted or drawn for it.
+  bool per_step = false;
+};
+
+inline PlotSeries plot_series(const json& series, const std::string& color) {
+  PlotSeries out;
+  out.label = text_of(series, "label");
+  out.color = color;
+  std::set<int> used;
+  std::map<int, std::string> dropped;
+  out.per_step = text_of(series, "rule") == "per-step-tolerance";
+  bool has_fit = !out.per_step && series.contains("fit_points") && series["fit_points"].is_object();
+  if (has_fit) {
+    for (const auto& i : series["fit_points"].value("used", json::array()))
+      used.insert(i.get<int>());
+    for (const auto& d : series["fit_points"].value("dropped", json::array()))
+      dropped[d.value("index", -1)] = text_of(d, "reason");
+  }
+  const json h = series.value("h", json::array()), error = series.value("error", json::array());
+  for (std::size_t i = 0; i < h.size() && i < error.size(); ++i) {
+    PlotPoint point;
+    point.index = static_cast<int>(i);
+    point.h = h[i].get<std::string>();
+    point.error = error[i].get<std::string>();
+    auto x = log10_decimal(point.h);
+    if (!x) continue;  // a non-positive step cannot be placed on a log axis
+    point.x = *x;
+    point.y = log10_decimal(point.error);
+    if (!point.y) {
+      point.status = "zero";
+      point.reason = dropped.count(point.index) ? dropped[point.index] : "";
+    } else if (!has_fit || (!used.count(point.index) && !dropped.count(point.index))) {
+      point.status = "measured";
+    } else if (used.count(point.index)) {
+      point.status = "used";
+    } else {
+      point.status = "dropped";
+      point.reason = dropped[point.index];
+    }
+    out.points.push_back(point);
+  }
+  const json order = series.value("observed_order", json());
+  const json constant = series.value("error_constant_log", json());
+  if (!out.per_step && order.is_number() && constant.is_number()) {
+    out.order = order.get<double>();
+    out.log10_constant = constant.get<double>() / std::log(10.0);
+  }
+  if (series.value("predicted_order", json()).is_number())
+    out.predicted = series["predicted_order"].get<double>();
+  out.exact = series.value("exact_order", false);
+  if (series.value("holds", json()).is_boolean()) out.holds = series["holds"].get<bool>();
+  out.fit_failure = text_of(series, "fit_failure");
+  return out;
+}
+
+// Tick positions (log10) over [low, high]: decades, thinned to at most ~7,
+// with 2 and 5 multiples added when fewer than two decades fall in range.
+// A report may hold any decimal ("1e-20000000000" is 2·10¹⁰ decades below 1): the step and the
+// decades are 64-bit, so the count stays at most ~8 whatever the range.
+inline std::vector<std::pair<double, std::string>> log_ticks(double low, double high) {
+  std::vector<std::pair<double, std::string>> ticks;
+  constexpr double largest = 1e15;  // decades beyond this are not on any page
+  if (!std::isfinite(low) || !std::isfinite(high) || low > high || std::abs(low) > largest ||
+      std::abs(high) > largest)
+    return ticks;
+  const long long step = std::max(1LL, static_cast<long long>(std::ceil((high - low) / 7)));
+  for (long long d = static_cast<long long>(std::ceil(low / static_cast<double>(step))) * step;
+       d <= high; d += step)
+    ticks.push_back({static_cast<double>(d),
+                     "10<tspan dy=\"-5\" font-size=\"9\">" + std::to_string(d) + "</tspan>"});
+  if (ticks.size() < 2) {
+    for (long long d = static_cast<long long>(std::floor(low)); d <= std::ceil(high); ++d)
+      for (int k : {2, 5}) {
+        double x = d + std::log10(static_cast<double>(k));
+        if (x >= low && x <= high)
+          ticks.push_back({x, std::to_string(k) + "&#183;10<tspan dy=\"-5\" font-size=\"9\">" +
+                                  std::to_string(d) + "</tspan>"});
+      }
+  }
+  return ticks;
+}
+
+inline std::string identifier(const std::string& text) {
+  std::string out;
+  for (char c : text) out += std::isalnum(static_cast<unsigned char>(c)) ? c : '-';
+  return out;
+}
+
+inline std::string fixed(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.1f", x);
+  return buffer;
+}
+
+}  // namespace vivv::html

@@ -1,0 +1,118 @@
+// The energy error against t for each h: a drift, a bounded oscillation and their envelope.
+#include "reports/html_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "cases/case_file.hpp"
+#include "reports/report.hpp"
+#include "reports/report_text.hpp"
+#include "reports/html/plot_frame.hpp"
+
+namespace vivv {
+
+using namespace html;
+
+
+std::string render_time_plot(const json& claim, const std::string& key) {
+  const json evidence = claim.value("evidence", json::object());
+  const json runs = evidence.is_object() ? evidence.value("energy_error_against_t", json::array())
+                                         : json::array();
+  struct Line {
+    std::string h, N;
+    std::vector<std::pair<double, double>> points;  // (t, log10 |e|); |e| = 0 is left out
+    std::size_t zeros = 0;
+  };
+  std::vector<Line> lines;
+  std::optional<double> t_high, y_low, y_high;
+  for (const auto& run : runs) {
+    if (!run.is_object()) continue;
+    Line line;
+    line.h = text_of(run, "h");
+    line.N = run.value("N", json()).dump();
+    const json t = run.value("t", json::array()), error = run.value("error", json::array());
+    for (std::size_t i = 0; i < t.size() && i < error.size(); ++i) {
+      if (!t[i].is_string() || !error[i].is_string()) continue;
+      const auto y = log10_decimal(error[i].get<std::string>());
+      double time = 0;
+      try {
+        time = std::stod(t[i].get<std::string>());
+      } catch (const std::exception&) {
+        continue;
+      }
+      if (!std::isfinite(time)) continue;
+      if (!y) {
+        ++line.zeros;
+        continue;
+      }
+      line.points.emplace_back(time, *y);
+      t_high = std::max(t_high.value_or(time), time);
+      y_low = std::min(y_low.value_or(*y), *y);
+      y_high = std::max(y_high.value_or(*y), *y);
+    }
+    lines.push_back(line);
+  }
+  if (lines.empty() || !t_high || !(*t_high > 0)) return "";
+  const std::string quantity =
+      text_of(claim, "id") == "modified-energy" ? "|H̃_k − H̃_0|" : "|E_k − E_0|";
+  if (*y_high - *y_low < 1) *y_low = *y_high - 1;
+  const double pad = 0.06 * (*y_high - *y_low);
+  *y_low -= pad;
+  *y_high += pad;
+  const double width = 640, left = 72, right = width - 24, top = 14, plot_bottom = 214;
+  const double height = plot_bottom + 50;
+  auto px = [&](double t) { return left + t / *t_high * (right - left); };
+  auto py = [&](double y) {
+    return plot_bottom - (y - *y_low) / (*y_high - *y_low) * (plot_bottom - top);
+  };
+  std::ostringstream svg;
+  svg << "<svg class=\"plot time\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width
+      << "\" height=\"" << fixed(height) << "\" viewBox=\"0 0 " << width << " " << fixed(height)
+      << "\" data-claim-time-plot=\"" << escape(key)
+      << "\" role=\"img\" aria-label=\"energy error against t for " << escape(key) << "\">\n";
+  svg << "<title>" << escape(key) << ": " << quantity << " against t, one line per h</title>\n";
+  svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << right - left << "\" height=\""
+      << plot_bottom - top << "\" fill=\"#fbfcfe\" stroke=\"#c5ccd8\"/>\n<g class=\"tick\">\n";
+  for (int i = 0; i <= 4; ++i) {  // t axis: linear, 0 … T in quarters
+    const double t = *t_high * i / 4;
+    svg << "<line x1=\"" << fixed(px(t)) << "\" y1=\"" << top << "\" x2=\"" << fixed(px(t))
+        << "\" y2=\"" << plot_bottom << "\" stroke=\"#e3e7ee\"/><text x=\"" << fixed(px(t))
+        << "\" y=\"" << plot_bottom + 17 << "\" text-anchor=\"middle\">" << format_number(t, 3)
+        << "</text>\n";
+  }
+  for (const auto& [y, label] : log_ticks(*y_low, *y_high))
+    svg << "<line x1=\"" << left << "\" y1=\"" << fixed(py(y)) << "\" x2=\"" << right << "\" y2=\""
+        << fixed(py(y)) << "\" stroke=\"#e3e7ee\"/><text x=\"" << left - 6 << "\" y=\""
+        << fixed(py(y) + 4) << "\" text-anchor=\"end\">" << label << "</text>\n";
+  svg << "</g>\n<text x=\"" << (left + right) / 2 << "\" y=\"" << plot_bottom + 36
+      << "\" text-anchor=\"middle\">t</text>\n<text transform=\"translate(16 "
+      << (top + plot_bottom) / 2 << ") rotate(-90)\" text-anchor=\"middle\">" << quantity
+      << "</text>\n";
+  std::ostringstream legend;
+  legend << "<ul class=\"legend\" data-legend-for-time=\"" << escape(key) << "\">";
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::string color = series_colors[i % series_colors.size()];
+    std::string path;
+    for (const auto& [t, y] : lines[i].points)
+      path += (path.empty() ? "M" : " L") + fixed(px(t)) + " " + fixed(py(y));
+    if (!path.empty())
+      svg << "<path data-time-line=\"" << escape(lines[i].h) << "\" d=\"" << path
+          << "\" fill=\"none\" stroke=\"" << color << "\" stroke-width=\"1.3\"/>\n";
+    legend << "<li><span class=\"swatch\" style=\"background:" << color
+           << "\"></span>h = " << escape(lines[i].h) << " (N = " << escape(lines[i].N) << ")"
+           << (lines[i].zeros ? " <span class=\"small\">" + std::to_string(lines[i].zeros) +
+                                    " samples at exactly 0 left out</span>"
+                              : std::string())
+           << "</li>";
+  }
+  legend << "</ul>";
+  svg << "</svg>";
+  return svg.str() + legend.str();
+}
+
+}  // namespace vivv

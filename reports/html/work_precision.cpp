@@ -1,0 +1,162 @@
+// The work-precision diagram: error against cost (evaluations of L, or wall time) over the cases.
+#include "reports/html_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "cases/case_file.hpp"
+#include "reports/report.hpp"
+#include "reports/report_text.hpp"
+#include "reports/html/plot_frame.hpp"
+
+namespace vivv {
+
+using namespace html;
+
+
+std::string render_work_precision(const json& cases, const json& run, bool wall_time) {
+  const json run_seconds =
+      run.is_object() ? run.value("run_seconds", json::object()) : json::object();
+  // Cases of one system, parameters, initial state and T: their global errors are comparable.
+  struct Line {
+    std::string name, discretization, order;
+    std::vector<std::tuple<double, double, std::string>>
+        points;  // log10 evaluations, log10 error, title
+    std::optional<double> floor;
+  };
+  std::map<std::string, std::vector<Line>> groups;
+  for (const auto& c : cases) {
+    if (!c.is_object()) continue;
+    const json file = c.value("case_file", json::object());
+    const std::string group = text_of(c, "system") + " " + c.value("parameters", json()).dump() +
+                              " " + c.value("initial", json()).dump() +
+                              " T = " + c.value("T", json()).dump();
+    // The cost of each N's run, log10: its evaluations of L, or its wall time.
+    std::map<int, double> evaluations;
+    if (!wall_time) {
+      for (const auto& row : c.value("cost", json::array()))
+        if (row.is_object() && row.value("L_evaluations", 0L) > 0)
+          evaluations[row.value("N", 0)] =
+              std::log10(static_cast<double>(row.value("L_evaluations", 0L)));
+    } else if (run_seconds.is_object()) {
+      for (const auto& row : run_seconds.value(text_of(c, "name"), json::array()))
+        if (row.is_object() && row.value("seconds", 0.0) > 0)
+          evaluations[row.value("N", 0)] = std::log10(row.value("seconds", 0.0));
+    }
+    if (evaluations.empty()) continue;
+    for (const auto& claim : c.value("claims", json::array())) {
+      if (text_of(claim, "id") != "global-order" || claim.value("series", json::array()).empty())
+        continue;
+      const json& s = claim["series"][0];
+      Line line;
+      line.name = text_of(c, "name");
+      line.discretization =
+          file.is_object() && file.contains("discretization") && file["discretization"].is_object()
+              ? text_of(file["discretization"], "kind") + text_of(file["discretization"], "stepper")
+              : "";
+      line.order = s.value("observed_order", json()).is_number()
+                       ? format_number(s["observed_order"].get<double>(), 3)
+                       : "—";
+      line.floor = log10_decimal(text_of(s, "floor"));
+      const std::vector<int> steps =
+          c.value("sweep", json::object()).value("steps_used", std::vector<int>{});
+      const json h = s.value("h", json::array()), error = s.value("error", json::array());
+      for (std::size_t i = 0; i < error.size() && i < steps.size(); ++i) {
+        const auto e =
+            error[i].is_string() ? log10_decimal(error[i].get<std::string>()) : std::nullopt;
+        if (!e || !evaluations.count(steps[i])) continue;
+        line.points.emplace_back(evaluations[steps[i]], *e,
+                                 "N = " + std::to_string(steps[i]) + ": error " +
+                                     error[i].get<std::string>().substr(0, 12) + ", 10^" +
+                                     format_number(evaluations[steps[i]], 3) + " evaluations of L");
+      }
+      if (line.points.size() >= 2) groups[group].push_back(line);
+    }
+  }
+  std::ostringstream out;
+  int figure = 0;
+  for (const auto& [group, lines] : groups) {
+    if (lines.size() < 2) continue;  // one method alone is no comparison
+    std::optional<double> x_low, x_high, y_low, y_high, floor;
+    for (const auto& line : lines) {
+      for (const auto& [x, y, title] : line.points) {
+        x_low = std::min(x_low.value_or(x), x), x_high = std::max(x_high.value_or(x), x);
+        y_low = std::min(y_low.value_or(y), y), y_high = std::max(y_high.value_or(y), y);
+      }
+      if (line.floor) floor = std::max(floor.value_or(*line.floor), *line.floor);
+    }
+    if (*x_high - *x_low < 0.5) *x_high = *x_low + 0.5;
+    if (*y_high - *y_low < 1) *y_low = *y_high - 1;
+    if (floor && *floor > *y_low - 1 && *floor < *y_high) *y_low = std::min(*y_low, *floor - 0.5);
+    const double px_pad = 0.05 * (*x_high - *x_low), py_pad = 0.06 * (*y_high - *y_low);
+    *x_low -= px_pad, *x_high += px_pad, *y_low -= py_pad, *y_high += py_pad;
+    const double width = 640, left = 72, right = width - 24, top = 14, bottom = 244,
+                 height = bottom + 50;
+    auto px = [&](double x) { return left + (x - *x_low) / (*x_high - *x_low) * (right - left); };
+    auto py = [&](double y) { return bottom - (y - *y_low) / (*y_high - *y_low) * (bottom - top); };
+    out << "<figure class=\"work-precision\"><svg class=\"plot wp\" "
+           "xmlns=\"http://www.w3.org/2000/svg\" width=\""
+        << width << "\" height=\"" << height << "\" viewBox=\"0 0 " << width << " " << height
+        << "\" data-work-precision=\"" << (wall_time ? "seconds-" : "evaluations-") << figure++
+        << "\" role=\"img\" aria-label=\"work-precision diagram\">\n"
+        << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << right - left
+        << "\" height=\"" << bottom - top << "\" fill=\"#fbfcfe\" stroke=\"#c5ccd8\"/>\n";
+    if (floor && *floor > *y_low)
+      out << "<rect data-floor=\"1\" x=\"" << left << "\" y=\""
+          << fixed(py(std::min(*floor, *y_high))) << "\" width=\"" << right - left << "\" height=\""
+          << fixed(bottom - py(std::min(*floor, *y_high)))
+          << "\" fill=\"#e9ecf2\"><title>below the floor: errors here cannot be told from rounding "
+             "or the "
+             "reference's own error</title></rect>\n";
+    out << "<g class=\"tick\">";
+    for (const auto& [x, label] : log_ticks(*x_low, *x_high))
+      out << "<line x1=\"" << fixed(px(x)) << "\" y1=\"" << top << "\" x2=\"" << fixed(px(x))
+          << "\" y2=\"" << bottom << "\" stroke=\"#e3e7ee\"/><text x=\"" << fixed(px(x))
+          << "\" y=\"" << bottom + 17 << "\" text-anchor=\"middle\">" << label << "</text>";
+    for (const auto& [y, label] : log_ticks(*y_low, *y_high))
+      out << "<line x1=\"" << left << "\" y1=\"" << fixed(py(y)) << "\" x2=\"" << right
+          << "\" y2=\"" << fixed(py(y)) << "\" stroke=\"#e3e7ee\"/><text x=\"" << left - 6
+          << "\" y=\"" << fixed(py(y) + 4) << "\" text-anchor=\"end\">" << label << "</text>";
+    out << "</g>\n<text x=\"" << (left + right) / 2 << "\" y=\"" << bottom + 36
+        << "\" text-anchor=\"middle\">"
+        << (wall_time ? "wall time of the run, s (this machine)"
+                      : "evaluations of L (the run's cost, counted)")
+        << "</text>\n<text "
+           "transform=\"translate(16 "
+        << (top + bottom) / 2 << ") rotate(-90)\" text-anchor=\"middle\">|q_N − q(T)|</text>\n";
+    std::ostringstream legend;
+    legend << "<ul class=\"legend\">";
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      const std::string color = series_colors[i % series_colors.size()];
+      std::string path;
+      for (const auto& [x, y, title] : lines[i].points)
+        path += (path.empty() ? "M" : " L") + fixed(px(x)) + " " + fixed(py(y));
+      out << "<path data-wp-line=\"" << escape(lines[i].name) << "\" d=\"" << path
+          << "\" fill=\"none\" stroke=\"" << color << "\" stroke-width=\"1.6\"/>";
+      for (const auto& [x, y, title] : lines[i].points)
+        out << "<circle cx=\"" << fixed(px(x)) << "\" cy=\"" << fixed(py(y))
+            << "\" r=\"3.5\" fill=\"" << color << "\"><title>"
+            << escape(lines[i].name + ", " + title) << "</title></circle>";
+      out << "\n";
+      legend << "<li><span class=\"swatch\" style=\"background:" << color << "\"></span>"
+             << escape(lines[i].name) << " <span class=\"small\">"
+             << escape(lines[i].discretization) << ", fitted order " << lines[i].order
+             << "</span></li>";
+    }
+    legend << "</ul>";
+    out << "</svg>" << legend.str() << "<figcaption>" << escape(group)
+        << ": the global error against "
+        << (wall_time ? "the wall time of each run on the machine that ran it"
+                      : "the evaluations of L each run made (the same on any machine)")
+        << " (log-log; shaded: below the floor). Lower and further left is "
+           "better.</figcaption></figure>\n";
+  }
+  return out.str();
+}
+
+}  // namespace vivv
