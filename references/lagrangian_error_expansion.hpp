@@ -65,7 +65,8 @@ Point<PowerSeries<typename System::Scalar>, System::dimension> solution_series(
 // T) against the same formula expanded exactly, so one rule gets one verdict whichever way it
 // is written. Throws std::domain_error where the formula has no expansion at this state.
 // With `sizes`, also the size of the two sides of each coefficient, max(|L_d's|, |the action's|):
-// the terms that cancel in E_k, from which its rounding unit comes (exact_coefficient_check).
+// the terms that cancel in E_k, from which its rounding unit comes (add_exact_coefficients,
+// harness/claims/local_consistency.hpp).
 template <LagrangianSystem System>
 std::vector<typename System::Scalar> expression_error_expansion(
     const System& system, const QxQDiscretization<typename System::Scalar>& d,

@@ -137,7 +137,7 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
   }
 
  private:
-  // The size of the terms p = ∂L/∂w is a sum of at (q, w): |p|, |M·w| and |∂L/∂w − M·w|.
+  // The size of the terms that p = ∂L/∂w is a sum of, at (q, w): |p|, |M·w| and |∂L/∂w − M·w|.
   template <LagrangianSystem System>
   static typename System::Scalar momentum_terms(const CaseContext<System>& context,
                                                 const Vector<typename System::Scalar, System::dimension>& q,

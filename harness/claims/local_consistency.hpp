@@ -95,9 +95,9 @@ void add_signed_coefficient(ClaimResult& claim, const CaseContext<System>& conte
 // non-zero E_k decides fail without a sweep: a weight off by 10⁻³ whose h term hides in a
 // cancellation dip of the sweep, or a spurious term that vanishes at the initial state (∝ w·h
 // with w₀ = 0), shows at the states along the reference orbit. Each E_k is a difference of L_d's
-// coefficient and the action's; its rounding unit is ε times the larger of the two, and
-// `rounding_units` of them are allowed (measured on correct rules: docs/claims.md). Below that
-// the coefficient vanishes to working precision and the sweep decides alone.
+// coefficient and the action's; its rounding unit is ε times the size of those terms (below), and
+// `rounding_units` of them are allowed (correct rules measure at most 0.99: docs/claims.md).
+// Below that the coefficient vanishes to working precision and the sweep decides alone.
 template <LagrangianSystem System>
 void add_exact_coefficients(ClaimResult& claim, const CaseContext<System>& context, int r) {
   using T = typename System::Scalar;
