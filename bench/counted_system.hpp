@@ -2,7 +2,7 @@
 // the benchmarks divide a step's time by (bench/galerkin_benchmark.cpp, `vivv bench del`).
 #pragma once
 
-#include "core/lagrangian.hpp"
+#include "core/lagrangian/lagrangian.hpp"
 
 namespace vivv {
 

@@ -17,8 +17,8 @@
 #include "bench/median_reporter.hpp"
 #include "cases/formula_parser.hpp"
 #include "cases/systems.hpp"
-#include "core/del_evolution.hpp"
-#include "core/formula_system.hpp"
+#include "core/qxq/del_evolution.hpp"
+#include "core/formulas/formula_system.hpp"
 #include "references/taylor_flow.hpp"
 
 namespace {

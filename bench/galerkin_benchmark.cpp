@@ -17,8 +17,8 @@
 #include "bench/counted_system.hpp"
 #include "bench/median_reporter.hpp"
 #include "cases/systems.hpp"
-#include "core/del_evolution.hpp"
-#include "core/galerkin.hpp"
+#include "core/qxq/del_evolution.hpp"
+#include "core/qxq/galerkin.hpp"
 
 namespace {
 

@@ -1,6 +1,6 @@
 // Google Benchmark: the arithmetic floor of the Taylor recurrences in MPFR (issue 3).
 //
-// The recurrences of core/taylor_expansion.hpp are inner products
+// The recurrences of core/autodiff/taylor_expansion.hpp are inner products
 //   r = Σ_{j=1..k} a_j b_{k−j},
 // so the cost of one multiply-add at the working precision bounds the Taylor
 // flow from below. Measured per term of a length-48 inner product (order 48 is
@@ -16,7 +16,7 @@
 
 #include <vector>
 
-#include "core/taylor_expansion.hpp"
+#include "core/autodiff/taylor_expansion.hpp"
 
 namespace {
 

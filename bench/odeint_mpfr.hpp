@@ -5,7 +5,7 @@
 
 #include <boost/numeric/odeint.hpp>
 
-#include "core/scalar.hpp"
+#include "core/numerics/scalar.hpp"
 
 namespace boost::numeric::odeint::detail {
 template <>

@@ -13,10 +13,10 @@
 
 #include "cases/catalogue.hpp"
 #include "cases/formula_parser.hpp"
-#include "core/discrete_lagrangian.hpp"
-#include "core/formula_system.hpp"
-#include "core/odeint_map.hpp"
-#include "core/user_map.hpp"
+#include "core/qxq/discrete_lagrangian.hpp"
+#include "core/formulas/formula_system.hpp"
+#include "core/maps/odeint_map.hpp"
+#include "core/maps/user_map.hpp"
 
 namespace vivv {
 

@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/formula_system.hpp"
+#include "core/formulas/formula_system.hpp"
 
 namespace vivv {
 
@@ -58,7 +58,7 @@ struct TQSpec {
 
 struct DiscretizationSpec {
   std::string formalism = "qxq";  // "qxq", "tq", or "map" for kinds "odeint", "map", "process"
-  std::string kind;                      // a Q×Q rule name (core/discrete_lagrangian.hpp)
+  std::string kind;                      // a Q×Q rule name (core/qxq/discrete_lagrangian.hpp)
   std::optional<std::string> parameter;  // "alpha" or "beta", for the rules that take one
   // kind "expression": L_d as a formula in qb, qe, h, L(x, v) and the system's parameters, and
   // the order its author claims for it.
@@ -70,7 +70,7 @@ struct DiscretizationSpec {
   // kind "galerkin": degree s of the curve, "gauss" or "lobatto", and the number of nodes.
   int galerkin_degree = 0, galerkin_nodes = 0;
   std::string galerkin_quadrature;
-  std::string stepper;  // kind "odeint": one of odeint_steppers() (core/odeint_map.hpp)
+  std::string stepper;  // kind "odeint": one of odeint_steppers() (core/maps/odeint_map.hpp)
   // kind "process": a one-step map in another program, spoken to over its standard input and
   // output (protocol vivv-map/1, docs/process-protocol.md); its order is declared_order.
   std::vector<std::string> command;  // the program and its arguments, never through a shell
@@ -145,7 +145,7 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file);
 const std::vector<std::string>& scalar_names();
 
 // The catalogue system `name` written as a formula, with `parameters`: what runs a catalogue
-// system in a scalar other than MPFR (tests/core/formula_system_test.cpp checks it against the
+// system in a scalar other than MPFR (tests/core/formulas/formula_system_test.cpp checks it against the
 // compiled system).
 FormulaSystemDefinition catalogue_twin(const std::string& name,
                                        const std::vector<std::pair<std::string, std::string>>& parameters);

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "cases/systems.hpp"
-#include "core/noether.hpp"
-#include "core/scalar.hpp"
+#include "core/structure/noether.hpp"
+#include "core/numerics/scalar.hpp"
 
 namespace vivv {
 
@@ -63,7 +63,7 @@ struct SystemInfo {
   std::string name;
   int dimension;
   std::vector<ParameterSpec> parameters;
-  bool symmetric = false;  // declares a symmetry (core/noether.hpp)
+  bool symmetric = false;  // declares a symmetry (core/structure/noether.hpp)
 };
 
 // Name, dimension and parameters of every catalogue system.

@@ -1,4 +1,4 @@
-// Reading a formula's text into its syntax tree (core/formula.hpp), with
+// Reading a formula's text into its syntax tree (core/formulas/formula.hpp), with
 // Boost.Spirit X3. The grammar, loosest binding first:
 //
 //   expression = term (("+" | "-") term)*
@@ -14,7 +14,7 @@
 
 #include <string>
 
-#include "core/formula.hpp"
+#include "core/formulas/formula.hpp"
 
 namespace vivv {
 

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/lagrangian.hpp"
+#include "core/lagrangian/lagrangian.hpp"
 
 namespace vivv {
 

@@ -12,8 +12,8 @@
 
 #include "bench/counted_system.hpp"
 #include "cases/systems.hpp"
-#include "core/del_evolution.hpp"
-#include "core/lagrangian.hpp"
+#include "core/qxq/del_evolution.hpp"
+#include "core/lagrangian/lagrangian.hpp"
 #include "harness/bench_timing.hpp"
 
 namespace vivv {

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "cases/systems.hpp"
-#include "core/del_evolution.hpp"
+#include "core/qxq/del_evolution.hpp"
 #include "harness/bench_timing.hpp"
 #include "harness/process_map.hpp"
 

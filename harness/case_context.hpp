@@ -13,14 +13,14 @@
 #include <vector>
 
 #include "cases/case_file.hpp"
-#include "core/del_evolution.hpp"
-#include "core/euler_lagrange_tape.hpp"
-#include "core/formula_discretization.hpp"
-#include "core/odeint_map.hpp"
-#include "core/quadrature.hpp"
-#include "core/state.hpp"
-#include "core/tq_evolution.hpp"
-#include "core/user_map.hpp"
+#include "core/qxq/del_evolution.hpp"
+#include "core/lagrangian/euler_lagrange_tape.hpp"
+#include "core/formulas/formula_discretization.hpp"
+#include "core/maps/odeint_map.hpp"
+#include "core/numerics/quadrature.hpp"
+#include "core/lagrangian/state.hpp"
+#include "core/tq/tq_evolution.hpp"
+#include "core/maps/user_map.hpp"
 #include "harness/claim_result.hpp"
 #include "harness/order_fit.hpp"
 #include "harness/process_map.hpp"
@@ -219,7 +219,7 @@ ReferenceCheck check_reference(const Reference& reference, const State<T, n>& in
 }
 
 // What a run costs from construction to cost(): the evaluations of L this thread made (every
-// system counts them, core/lagrangian.hpp) and the wall time.
+// system counts them, core/lagrangian/lagrangian.hpp) and the wall time.
 class CostMeter {
  public:
   RunCost cost() const {

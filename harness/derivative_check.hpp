@@ -19,7 +19,7 @@
 #include <string>
 #include <tuple>
 
-#include "core/quadrature.hpp"
+#include "core/numerics/quadrature.hpp"
 #include "harness/claims/global_order.hpp"
 
 namespace vivv {

@@ -13,7 +13,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "core/newton.hpp"
+#include "core/numerics/newton.hpp"
 #include "harness/map_process.hpp"
 #include "harness/version.hpp"
 #include "harness/vivv.hpp"

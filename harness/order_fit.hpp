@@ -21,7 +21,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/scalar.hpp"
+#include "core/numerics/scalar.hpp"
 #include "reports/results.hpp"  // OrderFit, the data a fit produces
 
 namespace vivv {

@@ -23,8 +23,8 @@
 #include <string>
 #include <utility>
 
-#include "core/energy.hpp"
-#include "core/one_step_map.hpp"
+#include "core/structure/energy.hpp"
+#include "core/maps/one_step_map.hpp"
 #include "harness/map_process.hpp"
 
 namespace vivv {

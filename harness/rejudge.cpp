@@ -5,7 +5,7 @@
 #include <optional>
 #include <vector>
 
-#include "core/scalar.hpp"
+#include "core/numerics/scalar.hpp"
 #include "harness/order_fit.hpp"
 #include "reports/report.hpp"
 

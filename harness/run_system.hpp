@@ -9,7 +9,7 @@
 
 #include "cases/case_file.hpp"
 #include "cases/systems.hpp"
-#include "core/formula_system.hpp"
+#include "core/formulas/formula_system.hpp"
 #include "harness/run_case.hpp"
 
 namespace vivv {

@@ -51,7 +51,7 @@ bool first_step_converges(const CaseContext<System>& context, const typename Sys
 
 // After a Newton solve failed: which step sizes T/N take their first step, over the sweep
 // and halving h past its finest (at most `beyond` times), so the message can say the largest
-// h that converged. Each probe stops at Newton's first sign of divergence (core/newton.hpp).
+// h that converged. Each probe stops at Newton's first sign of divergence (core/numerics/newton.hpp).
 template <LagrangianSystem System>
 std::string first_step_probe(const CaseContext<System>& context, int beyond = 10) {
   using T = typename System::Scalar;

@@ -49,9 +49,9 @@
 #include <vector>
 
 #include "cases/case_file.hpp"
-#include "core/odeint_map.hpp"
-#include "core/recorded.hpp"
-#include "core/user_map.hpp"
+#include "core/maps/odeint_map.hpp"
+#include "core/formulas/recorded.hpp"
+#include "core/maps/user_map.hpp"
 #include "harness/run_case.hpp"
 #include "reports/report.hpp"
 
@@ -73,7 +73,7 @@ void register_map(const std::string& name, int order, Method method = {});
 //                  const Parameter& parameter) const;
 //   };
 // A case names it {"name": name, "params": {...}} under "system". vivv records L on a tape in
-// the case's scalar (core/recorded.hpp): +, −, ×, ÷, sin, cos, exp, log, sqrt and pow by a
+// the case's scalar (core/formulas/recorded.hpp): +, −, ×, ÷, sin, cos, exp, log, sqrt and pow by a
 // constant are recorded; a branch on a value is taken once, where the recording runs.
 template <class System>
 void register_system(const std::string& name, System system = {});

@@ -43,8 +43,8 @@
 #include <string>
 
 #include "cases/systems.hpp"
-#include "core/scalar.hpp"
-#include "core/state.hpp"
+#include "core/numerics/scalar.hpp"
+#include "core/lagrangian/state.hpp"
 
 namespace vivv {
 

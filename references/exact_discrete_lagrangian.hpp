@@ -8,7 +8,7 @@
 // with q(h) and ∂q(h)/∂w0 (the upper right block of the flow's Jacobian) from
 // the Taylor variational flow, from the guess w0 = (q_e − q_b)/h, until the
 // Newton step is below the tolerance. The action is composite Gauss–Legendre
-// quadrature (core/quadrature.hpp, nodes computed in T) over each
+// quadrature (core/numerics/quadrature.hpp, nodes computed in T) over each
 // Taylor step of the dense output of the solution, whose integrand is then
 // analytic well beyond the step. The shooting converges for h below the
 // first conjugate time of the solution; the result says whether it did.
@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
-#include "core/lagrangian.hpp"
-#include "core/scalar.hpp"
-#include "core/quadrature.hpp"
+#include "core/lagrangian/lagrangian.hpp"
+#include "core/numerics/scalar.hpp"
+#include "core/numerics/quadrature.hpp"
 #include "references/taylor_flow.hpp"
 #include "references/taylor_variational_flow.hpp"
 

@@ -36,9 +36,9 @@
 #include <utility>
 #include <vector>
 
-#include "core/lagrangian.hpp"
-#include "core/scalar.hpp"
-#include "core/state.hpp"
+#include "core/lagrangian/lagrangian.hpp"
+#include "core/numerics/scalar.hpp"
+#include "core/lagrangian/state.hpp"
 
 namespace vivv {
 

@@ -4,9 +4,9 @@
 //   E(h) = L_d(q(0), q(h); h) − ∫₀ʰ L(q(t), q'(t)) dt = Σ_k E_k h^k,
 //
 // q(t) = Σ q_k t^k the Taylor series of the Euler–Lagrange solution through
-// (q0, w0) (Taylor-mode AD of the system's L, core/taylor_curve.hpp). Each rule
+// (q0, w0) (Taylor-mode AD of the system's L, core/lagrangian/taylor_curve.hpp). Each rule
 // is written here again from its formula (docs/case-files.md), in truncated
-// power series, independently of core/discrete_lagrangian.hpp: the leading
+// power series, independently of core/qxq/discrete_lagrangian.hpp: the leading
 // coefficient E_{r+1} is a *signed* prediction that lagrangian-order compares
 // with the measured L_d − L_d^E, so a swapped weight (β ↔ 1 − β) or a swapped
 // interval, which keep every order, is seen.
@@ -17,10 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "core/discrete_lagrangian.hpp"
-#include "core/euler_lagrange_tape.hpp"
-#include "core/power_series.hpp"
-#include "core/taylor_curve.hpp"
+#include "core/qxq/discrete_lagrangian.hpp"
+#include "core/lagrangian/euler_lagrange_tape.hpp"
+#include "core/autodiff/power_series.hpp"
+#include "core/lagrangian/taylor_curve.hpp"
 
 namespace vivv {
 
@@ -40,7 +40,7 @@ std::vector<T> difference_coefficients(const PowerSeries<T>& discrete, const Pow
 }
 
 // q(h) = Σ_k q_k h^k, its first `length` coefficients, of the Euler–Lagrange solution through
-// (q0, w0) (Taylor-mode AD of the system's L, core/taylor_curve.hpp).
+// (q0, w0) (Taylor-mode AD of the system's L, core/lagrangian/taylor_curve.hpp).
 template <LagrangianSystem System>
 Point<PowerSeries<typename System::Scalar>, System::dimension> solution_series(
     const System& system, const Vector<typename System::Scalar, System::dimension>& q0,

@@ -18,9 +18,9 @@
 #include <utility>
 
 #include "cases/systems.hpp"
-#include "core/lagrangian.hpp"
-#include "core/scalar.hpp"
-#include "core/state.hpp"
+#include "core/lagrangian/lagrangian.hpp"
+#include "core/numerics/scalar.hpp"
+#include "core/lagrangian/state.hpp"
 #include "references/closed_forms.hpp"
 #include "references/extrapolation_flow.hpp"
 #include "references/taylor_flow.hpp"

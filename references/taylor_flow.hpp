@@ -1,8 +1,8 @@
 // The Taylor-series integrator: near-exact flows of any catalogue Lagrangian (issue 3).
 //
-// The Euler–Lagrange equations q'' = a(q, q') (core/euler_lagrange_tape.hpp)
+// The Euler–Lagrange equations q'' = a(q, q') (core/lagrangian/euler_lagrange_tape.hpp)
 // are advanced by Taylor polynomials of order p whose coefficients come from
-// Taylor-mode automatic differentiation (core/taylor_expansion.hpp). Order and
+// Taylor-mode automatic differentiation (core/autodiff/taylor_expansion.hpp). Order and
 // step follow Jorba & Zou (2005, §3.2–3.3), as heyoka does: for a tolerance tol,
 //   p = ⌈−ln(tol)/2 + 1⌉,
 //   ρ = min( (s/‖y_{p−1}‖)^{1/(p−1)}, (s/‖y_p‖)^{1/p} ),   h = ρ e^{−2} e^{−0.7/(p−1)},
@@ -27,10 +27,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/euler_lagrange_tape.hpp"
-#include "core/scalar.hpp"
-#include "core/state.hpp"
-#include "core/taylor_expansion.hpp"
+#include "core/lagrangian/euler_lagrange_tape.hpp"
+#include "core/numerics/scalar.hpp"
+#include "core/lagrangian/state.hpp"
+#include "core/autodiff/taylor_expansion.hpp"
 #include "references/taylor_trajectory.hpp"
 
 namespace vivv {

@@ -28,9 +28,9 @@
 #include <utility>
 #include <vector>
 
-#include "core/euler_lagrange_tape.hpp"
-#include "core/scalar.hpp"
-#include "core/state.hpp"
+#include "core/lagrangian/euler_lagrange_tape.hpp"
+#include "core/numerics/scalar.hpp"
+#include "core/lagrangian/state.hpp"
 #include "references/taylor_flow.hpp"
 
 namespace vivv {

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "core/scalar.hpp"
-#include "core/taylor_expansion.hpp"  // taylor_detail::set_mul, set_add
+#include "core/numerics/scalar.hpp"
+#include "core/autodiff/taylor_expansion.hpp"  // taylor_detail::set_mul, set_add
 
 namespace vivv {
 

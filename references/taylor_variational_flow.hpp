@@ -4,15 +4,15 @@
 //   Φ' = Df(y(t)) Φ,   Φ(0) = I,   f(q, w) = (w, a(q, w)),
 // whose column j, (δq^j, δw^j), satisfies δq^j'' = ∂a/∂q δq^j + ∂a/∂w δw^j:
 // a second-order system again, recorded by variational_tape
-// (core/euler_lagrange_tape.hpp) and integrated with the same Jorba–Zou order
+// (core/lagrangian/euler_lagrange_tape.hpp) and integrated with the same Jorba–Zou order
 // and steps as the flow, in the same precision. The exact discrete Lagrangian
 // shoots with it; the symplecticity claim checks Φ.
 #pragma once
 
 #include <vector>
 
-#include "core/euler_lagrange_tape.hpp"
-#include "core/state.hpp"
+#include "core/lagrangian/euler_lagrange_tape.hpp"
+#include "core/lagrangian/state.hpp"
 #include "references/taylor_flow.hpp"
 
 namespace vivv {

@@ -9,7 +9,7 @@
 #include <random>
 #include <string>
 
-#include "core/scalar.hpp"
+#include "core/numerics/scalar.hpp"
 
 namespace vivv::testing {
 

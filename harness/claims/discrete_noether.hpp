@@ -7,7 +7,7 @@
 // drifts at O(h²) per unit time: the claim's negative control.
 #pragma once
 
-#include "core/noether.hpp"
+#include "core/structure/noether.hpp"
 #include "harness/claim.hpp"
 #include "harness/claims/global_order.hpp"
 

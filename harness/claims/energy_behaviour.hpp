@@ -33,7 +33,7 @@
 // scheme, h where h/2 belongs in one term — fails, whatever its drift.
 #pragma once
 
-#include "core/energy.hpp"
+#include "core/structure/energy.hpp"
 #include "harness/claim.hpp"
 #include "harness/claims/global_order.hpp"
 

@@ -1,7 +1,7 @@
 // modified-energy (backward error analysis; Hairer–Lubich–Wanner IX.3,
 // Vermeeren 2017): for L = ½|w|² − U(q) the midpoint and trapezoid rules
 // conserve H̃ = H + h² H₂ to O(h⁴) over the whole run, while H itself is
-// conserved only to O(h²). H₂ is derived in core/modified_energy.hpp and
+// conserved only to O(h²). H₂ is derived in core/structure/modified_energy.hpp and
 // checked there against the harmonic oscillator's exact modified frequencies.
 // An order alone cannot tell H̃'s O(h⁴) truncation from a drift h⁴·t over a fixed T (a DEL
 // whose two sides differ at O(h⁴) once passed at 3.99), so H̃ − H̃_0 also goes through
@@ -10,7 +10,7 @@
 // and, in the unit tests, H₂ with a wrong sign — both leave H̃ at O(h²).
 #pragma once
 
-#include "core/modified_energy.hpp"
+#include "core/structure/modified_energy.hpp"
 #include "harness/claim.hpp"
 #include "harness/claims/energy_behaviour.hpp"
 #include "harness/claims/global_order.hpp"

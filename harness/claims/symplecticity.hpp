@@ -1,14 +1,14 @@
 // symplecticity (Marsden–West §1.3.2): the DEL of a discrete Lagrangian is, on
 // (q, p), a symplectic map: its Jacobian J satisfies JᵀΩJ = Ω at every step,
 // to working precision — not as h → 0, at every h. J comes from the implicit
-// function theorem with the Hessian blocks of L_d (core/symplectic.hpp). Two
+// function theorem with the Hessian blocks of L_d (core/structure/symplectic.hpp). Two
 // different rules on the DEL's two sides (a past_discretization) make a map
 // that is not symplectic: the defect is the difference of their mixed blocks
 // through B_e⁻¹, O(h²) and far above rounding (the claim's negative control).
 #pragma once
 
-#include "core/energy.hpp"
-#include "core/symplectic.hpp"
+#include "core/structure/energy.hpp"
+#include "core/structure/symplectic.hpp"
 #include "harness/claim.hpp"
 #include "harness/claims/global_order.hpp"
 

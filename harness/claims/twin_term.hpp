@@ -5,14 +5,14 @@
 //   mismatched-legendre: in a mismatched DEL (L_d with a, L~_d with ã, or two
 //     different rules) it no longer cancels: the order drops to r − 1, and for
 //     r = 1 the scheme is inconsistent, converging at order 1 to the solution
-//     of the modified equation of docs/theory.md (twin terms) (core/modified_equation.hpp).
+//     of the modified equation of docs/theory.md (twin terms) (core/qxq/modified_equation.hpp).
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 
-#include "core/modified_equation.hpp"
+#include "core/qxq/modified_equation.hpp"
 #include "harness/claims/global_order.hpp"
 
 namespace vivv {

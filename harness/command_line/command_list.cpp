@@ -28,7 +28,7 @@
 #include <vector>
 
 #include "cases/catalogue.hpp"
-#include "core/discrete_lagrangian.hpp"
+#include "core/qxq/discrete_lagrangian.hpp"
 #include "harness/claims.hpp"
 #include "harness/command_line/command_line.hpp"
 #include "harness/run_case.hpp"

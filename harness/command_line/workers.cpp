@@ -28,8 +28,8 @@
 #include <thread>
 #include <vector>
 
-#include "core/lagrangian.hpp"
-#include "core/newton.hpp"
+#include "core/lagrangian/lagrangian.hpp"
+#include "core/numerics/newton.hpp"
 #include "harness/command_line/command_line.hpp"
 #include "harness/map_process.hpp"
 #include "harness/run_case.hpp"

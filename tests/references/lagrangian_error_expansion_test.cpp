@@ -1,6 +1,6 @@
 // The signed leading coefficient of L_d − L_d^E from the Taylor expansion
 // (references/lagrangian_error_expansion.hpp) against the measured signed error
-// of core/discrete_lagrangian.hpp, on the harmonic oscillator, whose L_d^E has a
+// of core/qxq/discrete_lagrangian.hpp, on the harmonic oscillator, whose L_d^E has a
 // closed form: every rule and a twin term, in double, quad and MPFR. Negative
 // control: the expansion of β = 0.3 against the measured error of β = 0.7 (a
 // swapped weight, which keeps the order) is rejected. A rule written as a formula
@@ -15,7 +15,7 @@
 
 #include "cases/formula_parser.hpp"
 #include "cases/systems.hpp"
-#include "core/formula_discretization.hpp"
+#include "core/formulas/formula_discretization.hpp"
 #include "tests/test_scalars.hpp"
 
 namespace vivv {

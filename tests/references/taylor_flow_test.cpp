@@ -10,7 +10,7 @@
 #include <tuple>
 
 #include "cases/catalogue.hpp"
-#include "core/modified_equation.hpp"
+#include "core/qxq/modified_equation.hpp"
 #include "references/closed_forms.hpp"
 #include "tests/test_scalars.hpp"
 

@@ -1,0 +1,121 @@
+// A Lagrangian system written as a formula in a case file (docs/case-files.md):
+//
+//   "system": {"name": "henon-heiles", "lagrangian": "(vx^2 + vy^2)/2 - ...",
+//              "coordinates": ["x", "y"], "velocities": ["vx", "vy"], "params": {...}}
+//
+// The formula's tree is recorded once in T as a straight-line program over
+// (q_1 … q_n, w_1 … w_n) (core/autodiff/tape.hpp; parameters and pi become constants
+// in T), and L(q, w) runs that program in whatever scalar S core/ asks for:
+// T, jets, the Taylor tape, power series. So a formula system is a
+// LagrangianSystem like any in the catalogue.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/formulas/formula.hpp"
+#include "core/lagrangian/lagrangian.hpp"
+#include "core/formulas/recorded.hpp"
+#include "core/autodiff/tape.hpp"
+
+namespace vivv {
+
+// The names a system formula is written in; parameter values are decimals, parsed in T.
+struct FormulaSystemDefinition {
+  std::string name;
+  std::string text;  // the formula as written
+  FormulaNode lagrangian;
+  std::vector<std::string> coordinates, velocities;
+  std::vector<std::pair<std::string, std::string>> parameters;
+  // The generator ξ(q) of a symmetry of L, a formula per coordinate in the
+  // coordinates and parameters (core/structure/noether.hpp); empty: none declared.
+  std::vector<FormulaNode> symmetry;
+  // A system registered as C++ code (core/formulas/recorded.hpp): L is recorded from it, not from
+  // `lagrangian`, which is then empty.
+  std::shared_ptr<const PerScalar<SystemRecorder>> recorded;
+};
+
+template <class T, int n>
+struct FormulaSystem {
+  using Scalar = T;
+  static constexpr int dimension = n;
+  std::shared_ptr<const Tape<T>> program;  // inputs q_1 … q_n, w_1 … w_n; one output, L
+
+  // L(q, w): the recorded program run in S.
+  template <class S>
+  S lagrangian(const Point<S, n>& q, const Point<S, n>& w) const {
+    count_lagrangian_evaluation();
+    std::array<S, 2 * n> x;
+    for (int i = 0; i < n; ++i) x[i] = q[i], x[n + i] = w[i];
+    return program->evaluate_first(x.data());
+  }
+
+  std::shared_ptr<const Tape<T>> symmetry;  // inputs q_1 … q_n; outputs ξ_1 … ξ_n; null: none declared
+  bool has_symmetry() const { return symmetry != nullptr; }
+  Point<T, n> symmetry_generator(const Point<T, n>& q) const {
+    const std::vector<T> xi = symmetry->evaluate(std::vector<T>(q.begin(), q.end()));
+    Point<T, n> generator;
+    for (int i = 0; i < n; ++i) generator[i] = xi[i];
+    return generator;
+  }
+};
+
+// The scope of a system formula in V: coordinates and velocities from `q`, `w`, parameters in T.
+template <class T, class V>
+FormulaScope<T, V> system_formula_scope(const FormulaSystemDefinition& definition, const std::vector<V>& q,
+                                        const std::vector<V>& w) {
+  FormulaScope<T, V> scope;
+  for (std::size_t i = 0; i < definition.coordinates.size(); ++i) {
+    scope.names[definition.coordinates[i]] = FormulaValue<V>::scalar(q[i], false);
+    scope.names[definition.velocities[i]] = FormulaValue<V>::scalar(w[i], false);
+  }
+  for (const auto& [name, value] : definition.parameters)
+    scope.names[name] = FormulaValue<V>::scalar(V(from_decimal<T>(value)), true);
+  return scope;
+}
+
+// Records the formula of `definition` (dimension n) in T. Throws FormulaError for
+// a formula that has no meaning (unknown names, vectors, non-constant exponents).
+template <class T, int n>
+FormulaSystem<T, n> make_formula_system(const FormulaSystemDefinition& definition) {
+  TapeRecording<T> recording(2 * n);
+  std::vector<TapeScalar<T>> q, w;
+  for (int i = 0; i < n; ++i) q.push_back(recording.input(i)), w.push_back(recording.input(n + i));
+  FormulaSystem<T, n> system;
+  if (definition.recorded) {
+    const TapeScalar<T> value = definition.recorded->template get<T>()(q, w, definition.parameters);
+    system.program = std::make_shared<const Tape<T>>(recording.finish({value}));
+    return system;
+  }
+  const auto scope = system_formula_scope<T>(definition, q, w);
+  const FormulaValue<TapeScalar<T>> value = interpret(definition.lagrangian, scope);
+  system.program = std::make_shared<const Tape<T>>(recording.finish({value.components[0]}));
+  if (!definition.symmetry.empty()) {
+    TapeRecording<T> generator(n);
+    std::vector<TapeScalar<T>> x;
+    for (int i = 0; i < n; ++i) x.push_back(generator.input(i));
+    FormulaScope<T, TapeScalar<T>> coordinates;  // the coordinates and parameters, no velocities
+    for (int i = 0; i < n; ++i) coordinates.names[definition.coordinates[i]] = FormulaValue<TapeScalar<T>>::scalar(x[i], false);
+    for (const auto& [name, value] : definition.parameters)
+      coordinates.names[name] = FormulaValue<TapeScalar<T>>::scalar(TapeScalar<T>(from_decimal<T>(value)), true);
+    std::vector<TapeScalar<T>> components;
+    for (const FormulaNode& component : definition.symmetry) {
+      const FormulaValue<TapeScalar<T>> xi = interpret(component, coordinates);
+      if (xi.components.size() != 1) throw FormulaError(0, "a component of the symmetry must be a number");
+      components.push_back(xi.components[0]);
+    }
+    system.symmetry = std::make_shared<const Tape<T>>(generator.finish(components));
+  }
+  return system;
+}
+
+// L at (q, w) evaluated from the tree in T, naming the first sqrt, log, power or
+// quotient whose argument is outside its domain there (FormulaError).
+template <class T>
+T check_formula_domain(const FormulaSystemDefinition& definition, const std::vector<T>& q, const std::vector<T>& w) {
+  return interpret(definition.lagrangian, system_formula_scope<T>(definition, q, w)).components[0];
+}
+
+}  // namespace vivv

@@ -1,0 +1,183 @@
+// The Euler–Lagrange acceleration of a Lagrangian system as a tape (issue 3).
+//
+// euler_lagrange_tape records, once, the expression
+//   a(q, w) = M⁻¹ (dL/dq − (d²L/dw dq) w),   M = d²L/dw²     (docs/theory.md)
+// by evaluating the system's own generic L with S = Jet<TapeScalar<T>, 2n>
+// (so dL/dq, M and d²L/dw dq are recorded too) and solving M a = rhs by
+// Gaussian elimination on the tape. No per-system series: any catalogue L
+// that core/ can differentiate yields its Taylor coefficients through
+// core/autodiff/taylor_expansion.hpp.
+//
+// The elimination does not pivot (a tape fixes one sequence of operations),
+// which is stable for a definite mass matrix — every catalogue system has
+// one. A pivot that is identically zero is rejected while recording; one that
+// vanishes at a visited state gives non-finite coefficients, which the flow
+// reports.
+//
+// variational_tape extends a tape for x'' = a(x, x') in R^m by the
+// variational equations of its 2m first-order columns: with x = (q, δq¹…δq^{2m})
+// and v = (w, δw¹…δw^{2m}),
+//   δq^j'' = ∂a/∂q · δq^j + ∂a/∂w · δw^j,
+// recorded by replaying the tape in first-order jets whose seeds are the tape
+// variables δq^j, δw^j. Starting from the identity, (δq^j, δw^j)(t) is column
+// j of the flow's Jacobian d(q(t), w(t)) / d(q(0), w(0)).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/autodiff/jet.hpp"
+#include "core/lagrangian/lagrangian.hpp"
+#include "core/autodiff/tape.hpp"
+
+namespace vivv {
+
+// A system whose L can be evaluated in jets over the recording scalar.
+template <class System>
+concept TapeRecordable =
+    LagrangianSystem<System> &&
+    requires(const System& system,
+             const Point<Jet<TapeScalar<typename System::Scalar>, 2 * System::dimension>,
+                         System::dimension>& x) {
+      { system.lagrangian(x, x) };
+    };
+
+// Tape of a(q, w) = M⁻¹ (dL/dq − (d²L/dw dq) w): inputs (q_1..q_n, w_1..w_n), outputs a_1..a_n.
+template <TapeRecordable System>
+Tape<typename System::Scalar> euler_lagrange_tape(const System& system) {
+  using T = typename System::Scalar;
+  using S = TapeScalar<T>;
+  constexpr int n = System::dimension;
+  using J = Jet<S, 2 * n>;
+  TapeRecording<T> recording(2 * n);
+  Point<J, n> q, w;
+  for (int i = 0; i < n; ++i) {
+    q[i] = J::variable(recording.input(i), i);
+    w[i] = J::variable(recording.input(n + i), n + i);
+  }
+  J L = system.lagrangian(q, w);
+  // M a = dL/dq − (d²L/dw dq) w, as an augmented n × (n + 1) matrix.
+  std::vector<std::vector<S>> augmented(n, std::vector<S>(n + 1));
+  for (int i = 0; i < n; ++i) {
+    S rhs = L.gradient[i];
+    for (int j = 0; j < n; ++j) {
+      augmented[i][j] = L.second(n + i, n + j);
+      rhs = rhs - L.second(n + i, j) * recording.input(n + j);
+    }
+    augmented[i][n] = rhs;
+  }
+  // Gaussian elimination without pivoting, then back substitution.
+  for (int j = 0; j < n; ++j) {
+    if (augmented[j][j].is_constant(0))
+      throw SingularLagrangianError(
+          "euler_lagrange_tape: d2L/dw2 has an identically zero pivot (row " + std::to_string(j) +
+          ")");
+    for (int i = j + 1; i < n; ++i) {
+      S factor = augmented[i][j] / augmented[j][j];
+      for (int k = j; k <= n; ++k) augmented[i][k] = augmented[i][k] - factor * augmented[j][k];
+    }
+  }
+  std::vector<S> acceleration(n);
+  for (int i = n - 1; i >= 0; --i) {
+    S sum = augmented[i][n];
+    for (int k = i + 1; k < n; ++k) sum = sum - augmented[i][k] * acceleration[k];
+    acceleration[i] = sum / augmented[i][i];
+  }
+  return recording.finish(acceleration);
+}
+
+// Tape of x'' = a(x, x') extended by its variational equations (formula at the top of the file):
+// dimension m(1 + 2m) for a tape of dimension m.
+template <class T>
+Tape<T> variational_tape(const Tape<T>& base) {
+  using S = TapeScalar<T>;
+  const int m = base.inputs / 2;
+  const int columns = 2 * m;
+  const int extended = m * (1 + columns);  // dimension of the extended x
+  // Component i of δq^j sits at x index m + j m + i; of δw^j at extended + m + j m + i.
+  auto position = [&](int j, int i) { return m + j * m + i; };
+  auto velocity = [&](int j, int i) { return extended + m + j * m + i; };
+  TapeRecording<T> recording(2 * extended);
+  // Replay the base tape once per column in dual numbers (value, tangent); the values are
+  // recorded once (equal nodes are shared), the tangents once per column.
+  struct Dual {
+    S value, tangent;
+  };
+  std::vector<Dual> value(base.nodes.size());
+  std::vector<S> accelerations;
+  for (int j = -1; j < columns; ++j) {
+    for (std::size_t index = 0; index < base.nodes.size(); ++index) {
+      using std::cos;
+      using std::exp;
+      using std::log;
+      using std::pow;
+      using std::sin;
+      using std::sqrt;
+      const TapeNode& node = base.nodes[index];
+      Dual& r = value[index];
+      const Dual& a = node.a >= 0 && node.op != TapeOp::input ? value[node.a] : r;
+      const Dual& b = node.b >= 0 ? value[node.b] : r;
+      const S c = node.c >= 0 ? S(base.constants[node.c]) : S(0);
+      switch (node.op) {
+        case TapeOp::input: {
+          const int i = node.a % m;
+          const bool is_velocity = node.a >= m;
+          r.value = recording.input(is_velocity ? extended + i : i);
+          r.tangent = j < 0 ? S(0)
+                            : recording.input(is_velocity ? velocity(j, i) : position(j, i));
+          break;
+        }
+        case TapeOp::constant: r = {c, S(0)}; break;
+        case TapeOp::add: r = {a.value + b.value, a.tangent + b.tangent}; break;
+        case TapeOp::sub: r = {a.value - b.value, a.tangent - b.tangent}; break;
+        case TapeOp::neg: r = {-a.value, -a.tangent}; break;
+        case TapeOp::mul:
+          r = {a.value * b.value, a.tangent * b.value + a.value * b.tangent};
+          break;
+        case TapeOp::square: r = {a.value * a.value, 2 * a.value * a.tangent}; break;
+        case TapeOp::div: {
+          S quotient = a.value / b.value;
+          r = {quotient, (a.tangent - quotient * b.tangent) / b.value};
+          break;
+        }
+        case TapeOp::add_constant: r = {a.value + c, a.tangent}; break;
+        case TapeOp::constant_minus: r = {c - a.value, -a.tangent}; break;
+        case TapeOp::scale: r = {c * a.value, c * a.tangent}; break;
+        case TapeOp::constant_div: {
+          S quotient = c / a.value;
+          r = {quotient, -quotient * a.tangent / a.value};
+          break;
+        }
+        case TapeOp::sin: r = {sin(a.value), cos(a.value) * a.tangent}; break;
+        case TapeOp::cos: r = {cos(a.value), -sin(a.value) * a.tangent}; break;
+        case TapeOp::exp: {
+          S e = exp(a.value);
+          r = {e, e * a.tangent};
+          break;
+        }
+        case TapeOp::log: r = {log(a.value), a.tangent / a.value}; break;
+        case TapeOp::sqrt: {
+          S root = sqrt(a.value);
+          r = {root, a.tangent / (2 * root)};
+          break;
+        }
+        case TapeOp::atan: {
+          using std::atan;
+          r = {atan(a.value), a.tangent / b.value};  // b = 1 + a²
+          break;
+        }
+        case TapeOp::pow: {
+          S p = pow(a.value, c);
+          r = {p, c * p / a.value * a.tangent};
+          break;
+        }
+      }
+    }
+    for (int output : base.outputs) {
+      accelerations.push_back(j < 0 ? value[output].value : value[output].tangent);
+    }
+  }
+  return recording.finish(accelerations);
+}
+
+}  // namespace vivv

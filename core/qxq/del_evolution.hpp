@@ -1,0 +1,114 @@
+// The discrete Euler–Lagrange (DEL) evolution on Q×Q (docs/theory.md (Q × Q), paper eq. 2.5).
+//
+// (q_{k−1}, q_k) ↦ (q_k, q_{k+1}) solves
+//   p_begin[L_d](q_k, q_{k+1}) = p_end[L~_d](q_{k−1}, q_k)
+// for q_{k+1}, where L_d is the `future` and L~_d the `past` discretization;
+// they are equal except in the mismatched DEL of paper §2.3.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/qxq/discrete_lagrangian.hpp"
+#include "core/numerics/newton.hpp"
+
+namespace vivv {
+
+template <class T>
+struct DelScheme {
+  QxQDiscretization<T> future;  // L_d, on the segment (q_k, q_{k+1})
+  QxQDiscretization<T> past;    // L~_d, on the segment (q_{k−1}, q_k)
+  bool mismatched = false;      // past differs from future
+};
+
+// A scheme whose two sides use the same discrete Lagrangian.
+template <class T>
+DelScheme<T> matched_scheme(const QxQDiscretization<T>& discretization) {
+  return {discretization, discretization, false};
+}
+
+// What a run of DEL steps did: the trajectory and the most Newton iterations a step took.
+template <class T, int n>
+struct DelTrajectory {
+  std::vector<Vector<T, n>> q;  // q_0, ..., q_N
+  int max_iterations = 0;
+};
+
+// One DEL step: q_{k+1} from p_begin[future](q_k, q_{k+1}) = p_end[past](q_{k−1}, q_k),
+// by Newton from the linear extrapolation 2 q_k − q_{k−1}.
+template <LagrangianSystem System>
+auto del_step(const System& system, const DelScheme<typename System::Scalar>& scheme,
+              const Vector<typename System::Scalar, System::dimension>& q_previous,
+              const Vector<typename System::Scalar, System::dimension>& q_current,
+              const typename System::Scalar& h) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  Vector<T, n> target = p_end(system, scheme.past, q_previous, q_current, h);
+  Vector<T, n> q_next = 2 * q_current - q_previous;
+  // Nothing reads the residual at q_{k+1}; the quadratic convergence of a step along a run
+  // makes the predicted stop safe (core/numerics/newton.hpp). Both save an L_d evaluation per step.
+  auto report = newton_solve<T, n>(
+      q_next,
+      [&](const Vector<T, n>& x, Vector<T, n>& residual, Matrix<T, n, n>& jacobian) {
+        auto legendre = begin_momentum(system, scheme.future, q_current, x, h);
+        residual = legendre.p_begin - target;
+        jacobian = legendre.dp_begin_dq_e;
+      },
+      options_along_a_run());
+  return std::pair{q_next, report};
+}
+
+// q_0, ..., q_N from (q_0, q_1) by N − 1 DEL steps of size h. A step whose
+// Newton solve fails is an error naming the step and h. `after_step(k, N)`, when given,
+// is called after each step (the harness throttles it into progress lines).
+template <LagrangianSystem System>
+auto del_trajectory(const System& system, const DelScheme<typename System::Scalar>& scheme,
+                    const Vector<typename System::Scalar, System::dimension>& q0,
+                    const Vector<typename System::Scalar, System::dimension>& q1,
+                    const typename System::Scalar& h, int steps,
+                    const std::function<void(int, int)>& after_step = {}) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  DelTrajectory<T, n> trajectory;
+  trajectory.q = {q0, q1};
+  trajectory.q.reserve(steps + 1);
+  for (int k = 1; k < steps; ++k) {
+    auto [q_next, report] = del_step(system, scheme, trajectory.q[k - 1], trajectory.q[k], h);
+    if (!report.converged) {
+      // Where the run was when the step failed: a step that fails partway is read against the
+      // state it started from, not the initial one.
+      require_converged(report, "DEL step " + std::to_string(k) + " of " + std::to_string(steps) +
+                                    " with h = " + to_decimal<T>(h, 17) +
+                                    " (from t = " + to_decimal<T>(T(k * h), 8) +
+                                    ", q = " + to_decimal_tuple<T, n>(trajectory.q[k]) + ")");
+    }
+    trajectory.max_iterations = std::max(trajectory.max_iterations, report.iterations);
+    trajectory.q.push_back(q_next);
+    if (after_step) after_step(k + 1, steps);
+  }
+  return trajectory;
+}
+
+// q_1 from the discrete Legendre transform: p_begin[future](q_0, q_1) = p_0,
+// by Newton from q_0 + h·w_0.
+template <LagrangianSystem System>
+auto start_from_momentum(const System& system, const QxQDiscretization<typename System::Scalar>& future,
+                         const Vector<typename System::Scalar, System::dimension>& q0,
+                         const Vector<typename System::Scalar, System::dimension>& w0,
+                         const typename System::Scalar& h) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  Vector<T, n> p0 = momentum(system, q0, w0);
+  Vector<T, n> q1 = q0 + h * w0;
+  auto report = newton_solve<T, n>(
+      q1, [&](const Vector<T, n>& x, Vector<T, n>& residual, Matrix<T, n, n>& jacobian) {
+        auto legendre = begin_momentum(system, future, q0, x, h);
+        residual = legendre.p_begin - p0;
+        jacobian = legendre.dp_begin_dq_e;
+      });
+  require_converged(report, "start from p_begin(q0, q1) = p(0) with h = " + to_decimal<T>(h, 17));
+  return q1;
+}
+
+}  // namespace vivv

@@ -1,0 +1,37 @@
+// The energy of a discrete trajectory (docs/theory.md, energy-behaviour).
+//
+// A Q×Q trajectory carries momenta p_k = −D1 L_d(q_k, q_{k+1}), not velocities:
+// the energy at step k is E(q_k, w_k) = w_k · ∂L/∂w − L with w_k the velocity
+// whose momentum ∂L/∂w(q_k, w_k) is p_k (the inverse Legendre transform, by
+// Newton from a guess such as the difference quotient).
+#pragma once
+
+#include <string>
+
+#include "core/lagrangian/lagrangian.hpp"
+#include "core/numerics/newton.hpp"
+
+namespace vivv {
+
+// The w with ∂L/∂w(q, w) = p, by Newton from `guess`; an error if it does not converge.
+template <LagrangianSystem System>
+auto velocity_for_momentum(const System& system, const Vector<typename System::Scalar, System::dimension>& q,
+                           const Vector<typename System::Scalar, System::dimension>& p,
+                           Vector<typename System::Scalar, System::dimension> guess) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  auto report = newton_solve<T, n>(
+      guess,
+      [&](const Vector<T, n>& w, Vector<T, n>& residual, Matrix<T, n, n>& jacobian) {
+        const auto L = lagrangian_in_velocity<2>(system, q, w);
+        for (int i = 0; i < n; ++i) {
+          residual[i] = L.gradient[i] - p[i];
+          for (int j = 0; j < n; ++j) jacobian(i, j) = L.second(i, j);
+        }
+      },
+      options_along_a_run());
+  require_converged(report, "inverse Legendre transform w(q, p)");
+  return guess;
+}
+
+}  // namespace vivv

@@ -1,0 +1,107 @@
+// Symplecticity of one-step maps on (q, p) (docs/theory.md (structure)).
+//
+// The DEL of L_d is, on (q, p), the map (q_k, p_k) ↦ (q_{k+1}, p_{k+1}) with
+//   p_k     = p_begin[L_d](q_k, q_{k+1})    (solved for q_{k+1}),
+//   p_{k+1} = p_end[L~_d](q_k, q_{k+1}),
+// L~_d the past side (= L_d unless the DEL is mismatched). Its Jacobian follows
+// from the implicit function theorem with the blocks of the Hessians of L_d and
+// L~_d (core/qxq/discrete_lagrangian.hpp): writing B_b, B_e for ∂p_begin/∂q_b,
+// ∂p_begin/∂q_e of L_d and E_b, E_e for ∂p_end/∂q_b, ∂p_end/∂q_e of L~_d,
+//   ∂q_{k+1}/∂(q_k, p_k) = B_e⁻¹·(−B_b, I),
+//   ∂p_{k+1}/∂(q_k, p_k) = (E_b, 0) + E_e·∂q_{k+1}/∂(q_k, p_k).
+// A map with Jacobian J is symplectic when JᵀΩJ = Ω, Ω = [[0, I], [−I, 0]]:
+// for L~_d = L_d the mixed Hessian block is shared and the identity holds
+// exactly (Marsden–West §1.3.2); for two different rules the defect is the
+// difference of their mixed blocks.
+#pragma once
+
+#include "core/qxq/discrete_lagrangian.hpp"
+
+namespace vivv {
+
+// The Jacobian ∂(q_{k+1}, p_{k+1})/∂(q_k, p_k) of the DEL's (q, p) map from the
+// derivatives of L_d (future) and L~_d (past) at (q_k, q_{k+1}).
+template <class T, int n>
+Matrix<T, 2 * n, 2 * n> del_map_jacobian(const DiscreteLegendre<T, n>& future, const DiscreteLegendre<T, n>& past) {
+  Matrix<T, n, 2 * n> right;  // (−B_b, I)
+  right.template leftCols<n>() = -future.dp_begin_dq_b;
+  right.template rightCols<n>().setIdentity();
+  const Matrix<T, n, 2 * n> dq_next = future.dp_begin_dq_e.partialPivLu().solve(right);
+  Matrix<T, 2 * n, 2 * n> jacobian;
+  jacobian.template topRows<n>() = dq_next;
+  jacobian.template bottomRows<n>() = past.dp_end_dq_e * dq_next;
+  jacobian.template bottomLeftCorner<n, n>() += past.dp_end_dq_b;
+  return jacobian;
+}
+
+// max |a_ij|.
+template <class T, int rows, int cols>
+T max_entry(const Matrix<T, rows, cols>& a) {
+  using std::abs, std::max;
+  T largest = 0;
+  for (int i = 0; i < rows; ++i)
+    for (int j = 0; j < cols; ++j) largest = max(largest, T(abs(a(i, j))));
+  return largest;
+}
+
+// max |(JᵀΩJ − Ω)_ij|: zero for a symplectic map.
+template <class T, int m>
+T symplecticity_defect(const Matrix<T, m, m>& jacobian) {
+  static_assert(m % 2 == 0, "a map on (q, p) has an even dimension");
+  constexpr int n = m / 2;
+  Matrix<T, m, m> omega = Matrix<T, m, m>::Zero();
+  omega.template topRightCorner<n, n>().setIdentity();
+  omega.template bottomLeftCorner<n, n>() = -Matrix<T, n, n>::Identity();
+  return max_entry<T, m, m>(Matrix<T, m, m>(jacobian.transpose() * omega * jacobian - omega));
+}
+
+// Whether a Jacobian belongs to the map it is claimed for: central differences D_δ of the map
+// itself at x, at widths δ, δ/2 and δ/4 per coordinate, δ_j = ε^{1/3}·max(|x_j|, scale_j) —
+// `scale` the size of each coordinate along the run, so that a momentum passing near zero at a
+// turning point is not perturbed by a width its rounding swamps. `jacobian` is compared with
+// D_δ, whose error is its truncation t (O(δ²)) and the map's rounding r over δ: the changes
+// |D_δ − D_δ/2| ≈ |3t/4 ± r·(1 + 2)| and |D_δ/2 − D_δ/4| ≈ r·(2 + 4) carry both (the rounding
+// grows as the width shrinks, so the second change measures it even when the first happens to
+// cancel), and J may differ from D_δ by 4 × the larger change + √ε·|J|. Calibrated on midpoint,
+// trapezoid and Galerkin DELs and odeint's steppers on the pendulum, Duffing, Kepler and
+// Hénon–Heiles in double, long double, float128 and MPFR. A Jacobian of another step or of a
+// step of h/2, of the other side of a mismatched DEL, or with a block dropped misses by O(h) or
+// more.
+template <class T>
+struct JacobianAgreement {
+  T mismatch = 0;  // max |J − D_δ|
+  T allowed = 0;   // 4·max(|D_δ − D_δ/2|, |D_δ/2 − D_δ/4|) + √ε·max |J|
+  bool holds = true;
+};
+
+template <class T, int m, class Map>
+JacobianAgreement<T> compare_with_differences(const Map& map, const Vector<T, m>& x,
+                                              const Matrix<T, m, m>& jacobian,
+                                              const Vector<T, m>& scale) {
+  using std::abs, std::max, std::pow, std::sqrt;
+  const T root = pow(epsilon<T>(), T(1) / 3);
+  auto differences = [&](const T& fraction) {
+    Matrix<T, m, m> d;
+    for (int j = 0; j < m; ++j) {
+      T width = max(T(abs(x[j])), T(abs(scale[j])));
+      if (width == 0) width = 1;
+      width *= root * fraction;
+      Vector<T, m> up = x, down = x;
+      up[j] += width;
+      down[j] -= width;
+      d.col(j) = (map(up) - map(down)) / (up[j] - down[j]);
+    }
+    return d;
+  };
+  const Matrix<T, m, m> coarse = differences(T(1)), middle = differences(T(1) / 2),
+                        fine = differences(T(1) / 4);
+  JacobianAgreement<T> out;
+  out.mismatch = max_entry<T, m, m>(Matrix<T, m, m>(jacobian - coarse));
+  const T change = max(max_entry<T, m, m>(Matrix<T, m, m>(coarse - middle)),
+                       max_entry<T, m, m>(Matrix<T, m, m>(middle - fine)));
+  out.allowed = 4 * change + sqrt(epsilon<T>()) * max_entry<T, m, m>(jacobian);
+  out.holds = out.mismatch <= out.allowed;
+  return out;
+}
+
+}  // namespace vivv
