@@ -110,7 +110,7 @@ struct CaseSpec {
   std::string start = "reference";  // or "momentum"
   std::vector<std::string> claims;
   // Exact orders a case declares, each >= 1 and never below the theorem's
-  // bound for the claim (checked when the case runs: harness/claims.hpp).
+  // bound for the claim (checked when the case runs: harness/claims/registry.hpp).
   std::map<std::string, int> expect;
   std::string order_tolerance = default_order_tolerance;  // |observed − predicted| allowed
   std::map<std::string, ExpectedFailure> xfail;  // claim id -> how and why the case knows it fails

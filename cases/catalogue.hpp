@@ -25,7 +25,7 @@ using CatalogueSystems = std::tuple<PaperExample<T>, HarmonicOscillator<T>, Pend
                                     RelativisticParticle<T>, ChargedParticle<T>, Kepler<T>, HenonHeiles<T>,
                                     DoublePendulum<T>>;
 
-// Claim ids a case may ask for (docs/claims.md); harness/claims.hpp implements each.
+// Claim ids a case may ask for (docs/claims.md); harness/claims/registry.hpp implements each.
 inline const std::vector<std::string>& claim_ids() {
   static const std::vector<std::string> ids = {
       "global-order",       "lagrangian-order",    "legendre-order", "twin-term-invariance",

@@ -21,7 +21,7 @@
 #include "reports/html_report.hpp"
 #include "reports/junit_report.hpp"
 #include "reports/schema_check.hpp"
-#include "reports/signals.hpp"
+#include "core/platform/signals.hpp"
 
 namespace vivv {
 

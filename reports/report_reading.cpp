@@ -22,7 +22,7 @@
 
 #include "cases/case_file.hpp"
 #include "reports/schema_check.hpp"
-#include "reports/signals.hpp"
+#include "core/platform/signals.hpp"
 
 namespace vivv {
 

@@ -99,7 +99,7 @@ struct ReferenceCheck {
 };
 
 // The cross-check of vivv's derivatives from values of L and L_d alone
-// (harness/derivative_check.hpp): residuals and what each may reach, decimal strings; the DEL's
+// (harness/run/derivative_check.hpp): residuals and what each may reach, decimal strings; the DEL's
 // empty for a case that is not Q×Q. A check that fails voids every claim of the case.
 struct DerivativeCheck {
   std::string euler_lagrange_residual, euler_lagrange_allowed;

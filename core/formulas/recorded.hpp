@@ -1,5 +1,5 @@
 // Lagrangians and discrete Lagrangians given as C++ code by a program that links vivv
-// (harness/vivv.hpp: register_system, register_discrete_lagrangian) instead of as formulas in a
+// (harness/library/vivv.hpp: register_system, register_discrete_lagrangian) instead of as formulas in a
 // case file. The code is written once for any scalar; vivv records it on a tape in the case's
 // scalar (core/autodiff/tape.hpp), exactly as it records a formula, so everything downstream — jets,
 // Taylor series, every claim — runs it like a formula system or an "expression" L_d. A tape is

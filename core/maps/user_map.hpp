@@ -1,4 +1,4 @@
-// One-step maps a program linking vivv brings itself (harness/vivv.hpp, register_map), on a
+// One-step maps a program linking vivv brings itself (harness/library/vivv.hpp, register_map), on a
 // separable system L = ½ wᵀ M w − V(q) as odeint's steppers are (core/maps/one_step_map.hpp). The
 // method is a type with one member template, run in the working precision for the step and in
 // first-order jets over (q, p) for the Jacobian — so it must be written for any scalar S:

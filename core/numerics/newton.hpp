@@ -16,7 +16,7 @@ namespace vivv {
 
 struct SolverError : std::runtime_error {
   using std::runtime_error::runtime_error;
-  // The message already says which step sizes converge (harness/run_system_impl.hpp).
+  // The message already says which step sizes converge (harness/run/run_system_impl.hpp).
   bool step_sizes_probed = false;
 };
 

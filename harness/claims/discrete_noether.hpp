@@ -8,7 +8,7 @@
 #pragma once
 
 #include "core/structure/noether.hpp"
-#include "harness/claim.hpp"
+#include "harness/claims/claim.hpp"
 #include "harness/claims/global_order.hpp"
 
 namespace vivv {

@@ -34,7 +34,7 @@
 #pragma once
 
 #include "core/structure/energy.hpp"
-#include "harness/claim.hpp"
+#include "harness/claims/claim.hpp"
 #include "harness/claims/global_order.hpp"
 
 namespace vivv {

@@ -2,7 +2,7 @@
 // (Marsden–West Thm 2.3.1 item 1; the corollary of paper Thm 5.5).
 #pragma once
 
-#include "harness/claim.hpp"
+#include "harness/claims/claim.hpp"
 
 namespace vivv {
 

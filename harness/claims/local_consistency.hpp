@@ -7,7 +7,7 @@
 //                     (paper §2.3).
 #pragma once
 
-#include "harness/claim.hpp"
+#include "harness/claims/claim.hpp"
 #include "references/exact_discrete_lagrangian.hpp"
 #include "references/lagrangian_error_expansion.hpp"
 

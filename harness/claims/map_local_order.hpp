@@ -12,7 +12,7 @@
 #include <cmath>
 #include <optional>
 
-#include "harness/claim.hpp"
+#include "harness/claims/claim.hpp"
 
 namespace vivv {
 

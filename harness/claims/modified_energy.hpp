@@ -11,7 +11,7 @@
 #pragma once
 
 #include "core/structure/modified_energy.hpp"
-#include "harness/claim.hpp"
+#include "harness/claims/claim.hpp"
 #include "harness/claims/energy_behaviour.hpp"
 #include "harness/claims/global_order.hpp"
 

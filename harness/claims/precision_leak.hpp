@@ -24,7 +24,7 @@
 #include <type_traits>
 
 #include "cases/catalogue.hpp"
-#include "harness/claim.hpp"
+#include "harness/claims/claim.hpp"
 
 namespace vivv {
 

@@ -9,7 +9,7 @@
 
 #include "core/structure/energy.hpp"
 #include "core/structure/symplectic.hpp"
-#include "harness/claim.hpp"
+#include "harness/claims/claim.hpp"
 #include "harness/claims/global_order.hpp"
 
 namespace vivv {
@@ -30,7 +30,7 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
   // times the worst measured; the N-step composition Φ above N·ulps·u_max·max(1, |Φ|)².
   static constexpr int ulps = 16;
   // Scaling: defects above `resolved` units at two or more h that fall like a power of h are
-  // truncation (harness/claim.hpp, truncation_scaling), however small: RK4's h^5 per-step defect
+  // truncation (harness/claims/claim.hpp, truncation_scaling), however small: RK4's h^5 per-step defect
   // in double, a DEL whose two sides differ at O(h³).
   static constexpr int resolved = 4;
 

@@ -11,7 +11,7 @@
 
 #include <cmath>
 
-#include "harness/claim.hpp"
+#include "harness/claims/claim.hpp"
 
 namespace vivv {
 

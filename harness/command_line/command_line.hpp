@@ -2,7 +2,7 @@
 // options of `vivv run` and the reports they write. One file per command beside this header
 // (command_run.cpp, command_report.cpp, command_list.cpp), the options and help texts in
 // options.cpp, the --jobs workers, signals and the --max-seconds budget in workers.cpp;
-// harness/main.cpp dispatches. Not part of the library the package installs.
+// harness/command_line/main.cpp dispatches. Not part of the library the package installs.
 #pragma once
 
 #include <unistd.h>
@@ -16,7 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cases/case_file.hpp"
-#include "harness/baseline.hpp"
+#include "harness/verdicts/baseline.hpp"
 
 namespace vivv::command_line {
 

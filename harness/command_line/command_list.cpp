@@ -29,9 +29,9 @@
 
 #include "cases/catalogue.hpp"
 #include "core/qxq/discrete_lagrangian.hpp"
-#include "harness/claims.hpp"
+#include "harness/claims/registry.hpp"
 #include "harness/command_line/command_line.hpp"
-#include "harness/run_case.hpp"
+#include "harness/run/run_case.hpp"
 
 namespace fs = std::filesystem;
 

@@ -28,8 +28,8 @@
 #include <vector>
 
 #include "harness/command_line/command_line.hpp"
-#include "harness/rejudge.hpp"
-#include "harness/version.hpp"
+#include "harness/verdicts/rejudge.hpp"
+#include "harness/library/version.hpp"
 #include "reports/report.hpp"
 
 namespace fs = std::filesystem;

@@ -28,14 +28,14 @@
 #include <thread>
 #include <vector>
 
-#include "harness/baseline.hpp"
+#include "harness/verdicts/baseline.hpp"
 #include "harness/command_line/command_line.hpp"
-#include "harness/map_process.hpp"
-#include "harness/rejudge.hpp"
-#include "harness/run_case.hpp"
-#include "harness/version.hpp"
+#include "harness/process/program.hpp"
+#include "harness/verdicts/rejudge.hpp"
+#include "harness/run/run_case.hpp"
+#include "harness/library/version.hpp"
 #include "reports/report.hpp"
-#include "reports/signals.hpp"
+#include "core/platform/signals.hpp"
 
 namespace fs = std::filesystem;
 

@@ -31,10 +31,10 @@
 #include "core/lagrangian/lagrangian.hpp"
 #include "core/numerics/newton.hpp"
 #include "harness/command_line/command_line.hpp"
-#include "harness/map_process.hpp"
-#include "harness/run_case.hpp"
+#include "harness/process/program.hpp"
+#include "harness/run/run_case.hpp"
 #include "reports/report.hpp"
-#include "reports/signals.hpp"
+#include "core/platform/signals.hpp"
 
 namespace fs = std::filesystem;
 

@@ -9,7 +9,7 @@
 #include "core/lagrangian/euler_lagrange_tape.hpp"
 #include "core/autodiff/taylor_expansion.hpp"
 #include "core/tq/tq_discretization.hpp"
-#include "harness/run_case.hpp"
+#include "harness/run/run_case.hpp"
 #include "references/reference_flow.hpp"
 #include "references/taylor_variational_flow.hpp"
 #include "tests/test_scalars.hpp"

@@ -1,0 +1,164 @@
+// What every claim shares, so that a claim states only its own formula,
+// source, measurement, prediction and verdict (docs/claims.md, "Adding a claim").
+//
+// A claim is a type deriving from Claim<itself> with
+//   static constexpr const char* id, source, prediction;
+//   template <LagrangianSystem System> static ClaimResult evaluate(const CaseContext<System>&);
+// and, if it predicts an order, theorem_order(context) returning it (the
+// default predicts none: an identity, exactness or an inconsistency). It is
+// listed once in harness/claims/registry.hpp.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harness/context/case_context.hpp"
+#include "harness/verdicts/series.hpp"
+
+namespace vivv {
+
+template <class Derived>
+struct Claim {
+  // Whether a failure of the claim is an order its series' fit shows (so that a known failure
+  // states the range of that order); precision-leak judges floors, not one fitted order.
+  static constexpr bool fails_by_order = true;
+
+  // No order: the claim predicts an identity, exactness or an inconsistency.
+  template <LagrangianSystem System>
+  static std::optional<int> theorem_order(const CaseContext<System>&) {
+    return std::nullopt;
+  }
+
+  // An empty result carrying the claim's id, source and prediction.
+  static ClaimResult result() { return claim_result_for(Derived::id, Derived::source, Derived::prediction); }
+
+  // The prediction for the claim's main series: the theorem's order, or the
+  // exact order the case declares for this claim.
+  template <LagrangianSystem System>
+  static OrderPrediction predicted(const CaseContext<System>& context) {
+    return context.predict(Derived::id, *Derived::theorem_order(context));
+  }
+};
+
+// `measure(h)` at every h of the sweep, reporting "<what> at h = …" as it goes.
+template <LagrangianSystem System, class Measure>
+std::vector<typename System::Scalar> measure_each_step(const CaseContext<System>& context, const std::string& what,
+                                                       Measure&& measure) {
+  using T = typename System::Scalar;
+  std::vector<T> values;
+  for (const T& h : context.steps()) {
+    context.report(what + " at h = " + to_decimal<T>(h, 6));
+    values.push_back(measure(h));
+  }
+  return values;
+}
+
+// A series over the case's sweep, fitted with `floors` (the case's, reference included, unless
+// given) and its options, and judged against `predicted` (none: fitted and shown, not judged).
+template <LagrangianSystem System>
+Series sweep_series(const CaseContext<System>& context, const std::string& label,
+                    const std::vector<typename System::Scalar>& error,
+                    std::optional<OrderPrediction> predicted,
+                    std::optional<Floor<typename System::Scalar>> floors = std::nullopt) {
+  return make_series(label, context.steps(), error, floors ? *floors : context.floors(),
+                     predicted ? std::optional<double>(predicted->order) : std::nullopt,
+                     predicted && predicted->exact, context.order_tolerance, context.fit_options);
+}
+
+// Identities judge scaling too: a defect that falls with h like a power of h is truncation,
+// not rounding, whatever its size. Given each h's value and its rounding unit (what one
+// rounding of the computation is worth there), the values more than `above` units at two or
+// more h, each pair of consecutive ones falling at pairwise order >= 1 (in decreasing h), are
+// truncation: the description says so; empty when they are not.
+template <class T>
+std::string truncation_scaling(const std::vector<T>& h, const std::vector<T>& value,
+                               const std::vector<T>& unit, double above) {
+  using std::log;
+  std::vector<std::size_t>
+      resolved;  // indices above the rounding, in the sweep's (decreasing h) order
+  for (std::size_t i = 0; i < value.size(); ++i)
+    if (unit[i] > 0 && value[i] > T(above) * unit[i]) resolved.push_back(i);
+  if (resolved.size() < 2) return "";
+  std::string orders;
+  for (std::size_t k = 0; k + 1 < resolved.size(); ++k) {
+    const std::size_t a = resolved[k], b = resolved[k + 1];
+    const T order = log(T(value[a] / value[b])) / log(T(h[a] / h[b]));
+    if (!(order >= 1)) return "";
+    orders += (orders.empty() ? "" : ", ") + format_scalar(order, 3);
+  }
+  return "at " + std::to_string(resolved.size()) + " step sizes the defect is more than " +
+         format_scalar(above) + " rounding units and falls with h at pairwise orders " + orders +
+         ": a defect that falls like a power of h is truncation, not rounding";
+}
+
+// An identity checked at each h against its own tolerance: the measured values
+// as a series (not fitted against a prediction), the verdict `holds` stated
+// in words, and a row per h in the evidence under "per_step".
+template <class T>
+struct PerStepCheck {
+  std::vector<T> values;
+  bool holds = true;
+  nlohmann::json rows = nlohmann::json::array();
+  std::string
+      scaling_failure;  // truncation_scaling's finding, when the values fall like a power of h
+  std::string scaling_limit;  // what the scaling test would have caught
+  // Beyond the tolerance, but in a way the evidence cannot tell from rounding: why, and what
+  // would decide (the claim is then inconclusive, not failed).
+  struct Undecided {
+    std::string why, to_decide;
+  };
+  Undecided undecided;
+  std::vector<T> tolerances;
+  T smallest_tolerance = 0, largest_tolerance = 0;
+
+  // What the check could have caught: a value above the tolerance at its h.
+  std::string detection_limit() const {
+    if (tolerances.empty()) return "";
+    return "a value above " + format_scalar(smallest_tolerance) +
+           (largest_tolerance > smallest_tolerance ? " … " + format_scalar(largest_tolerance)
+                                                   : std::string()) +
+           " (the tolerance at each h) would have failed" +
+           (scaling_limit.empty() ? "" : "; so would " + scaling_limit);
+  }
+
+  // Records `value` at h against `tolerance`; `row` may carry more columns, and
+  // `also` a further condition the step must meet (its columns in `row`).
+  bool add(const T& h, const T& value, const T& tolerance, nlohmann::json row = nlohmann::json::object(),
+           bool also = true) {
+    const bool ok = value <= tolerance && also;
+    if (tolerances.empty() || tolerance < smallest_tolerance) smallest_tolerance = tolerance;
+    if (tolerances.empty() || tolerance > largest_tolerance) largest_tolerance = tolerance;
+    tolerances.push_back(tolerance);
+    holds = holds && ok;
+    values.push_back(value);
+    row["h"] = to_decimal<T>(h);
+    row["measured"] = to_decimal<T>(value);
+    row["tolerance"] = to_decimal<T>(tolerance);
+    row["holds"] = ok;
+    rows.push_back(std::move(row));
+    return ok;
+  }
+
+  // Adds the series and the per-step evidence to `claim` and concludes it.
+  template <LagrangianSystem System>
+  void conclude_claim(ClaimResult& claim, const CaseContext<System>& context, const std::string& label,
+                      const std::string& held, const std::string& failed) const {
+    claim.evidence["per_step"] = rows;
+    Series series = sweep_series(context, label, values, std::nullopt);
+    series.rule = "per-step-tolerance";
+    series.holds = holds && scaling_failure.empty();
+    series.explanation = *series.holds ? held : !holds ? failed : scaling_failure;
+    if (!holds && !scaling_failure.empty()) series.explanation += "; and " + scaling_failure;
+    if (!holds && scaling_failure.empty() && !undecided.why.empty()) {
+      series.inconclusive = true;
+      series.to_decide = undecided.to_decide;
+      series.explanation = undecided.why + "; to decide: " + undecided.to_decide;
+    }
+    series.detection_limit = detection_limit();
+    claim.series.push_back(series);
+    conclude(claim);
+  }
+};
+
+}  // namespace vivv

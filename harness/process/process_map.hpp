@@ -1,0 +1,225 @@
+// A case's one-step map computed by another program (discretization kind "process", protocol
+// vivv-map/1, harness/process/program.hpp): the OneStepMap the map claims check (global-order,
+// symplecticity, energy-behaviour, discrete-noether, precision-leak).
+//
+// The program works on (q, p), p = ∂L/∂w; vivv's states are (q, w), so a step sends
+// (h, q, p = FL(q, w)) and takes w' from the answer's p' by the inverse Legendre transform.
+// Numbers travel as decimal strings with at least D significant digits, D the digits that
+// carry the working precision (17 for a double); an answer with fewer is refused, since a
+// program that computes in double and prints 40 digits would pass the digits on as noise.
+//
+// The Jacobian ∂(q', p')/∂(q, p) that symplecticity measures comes from central differences of
+// a second instance of the program, started at D₂ = 2D + 10 digits: with the step
+// δ = 10^(−⌈D₂/3⌉)·max(1, |y_j|), the difference's truncation (δ²) and rounding (10^−D₂/δ) are
+// both about 10^(−2D₂/3) = 10^(−(4D + 20)/3), far below the working precision's 10^−D, so
+// JᵀΩJ − Ω measures the map and not the differences. That holds only if the program really
+// computes with D₂ digits: the first Jacobian and every eighth are computed again at ten times
+// the width, and a change beyond ε·|J| ends the case naming the program (padded digits).
+#pragma once
+
+#include <algorithm>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "core/structure/energy.hpp"
+#include "core/maps/one_step_map.hpp"
+#include "harness/process/program.hpp"
+
+namespace vivv {
+
+template <LagrangianSystem System>
+class ProcessMap final : public OneStepMap<typename System::Scalar, System::dimension> {
+  using T = typename System::Scalar;
+  static constexpr int n = System::dimension;
+
+ public:
+  // `system_json`: the system as the case file gives it, every parameter filled in.
+  ProcessMap(System system, MapProcess::Options options, nlohmann::json system_json, int order)
+      : system_(std::move(system)),
+        options_(std::move(options)),
+        system_json_(std::move(system_json)),
+        order_(order),
+        digits_(round_trip_digits<T>()),
+        process_(start(digits_)) {}
+
+  std::string name() const override { return process_->name(); }
+  int order() const override { return order_; }
+  std::string jacobian_method() const override {
+    return "central differences of one step of " + name() + " in a second instance of it at " +
+           std::to_string(fine_digits()) + " digits, step 10^-" +
+           std::to_string(difference_exponent()) + "·max(1, |y_j|) in each of (q, p)";
+  }
+
+  State<T, n> step(const State<T, n>& x, const T& h) const override {
+    const Vector<T, n> p = momentum_at(x);
+    nlohmann::json request = {
+        {"h", to_decimal<T>(h)}, {"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
+    for (int i = 0; i < n; ++i) {
+      request["q"].push_back(to_decimal<T>(x.q[i]));
+      request["p"].push_back(to_decimal<T>(p[i]));
+    }
+    const nlohmann::json answer = process_->request(request);
+    State<T, n> next;
+    Vector<T, n> p_next;
+    for (int i = 0; i < n; ++i) {
+      next.q[i] = number<T>(*process_, answer, "q", i, digits_);
+      p_next[i] = number<T>(*process_, answer, "p", i, digits_);
+    }
+    next.w = velocity_for_momentum(system_, next.q, p_next, x.w);
+    last_ = {next, p_next};
+    return next;
+  }
+
+  Matrix<T, 2 * n, 2 * n> jacobian(const State<T, n>& x, const T& h) const override {
+    if (!fine_) fine_ = start(fine_digits());
+    const Vector<T, n> p = momentum_at(x);
+    std::array<std::string, 2 * n> y;
+    for (int i = 0; i < n; ++i) y[i] = to_decimal<T>(x.q[i]), y[n + i] = to_decimal<T>(p[i]);
+    const std::string step = to_decimal<T>(h), epsilon_of_T = to_decimal<T>(epsilon<T>());
+    // The first Jacobian and every `recheck`-th one are computed again at 10 times the width: a
+    // program computing at the digits it was asked for gives the same matrix to about
+    // 10^(−(4D+14)/3) (the width's truncation grows 100 times), far below ε of the working
+    // precision; one that computes in fewer digits and pads its answers differs by its own
+    // rounding over the width, and the Jacobian would measure that instead of the map.
+    const bool check = jacobians_++ % recheck == 0;
+    std::array<std::array<std::string, 2 * n>, 2 * n> columns;  // ∂(q', p')/∂y_j, as decimals
+    {
+      PrecisionGuard guard(fine_digits() + 10);
+      using R = mpfr_real;
+      using std::abs, std::max, std::pow;
+      // Central differences at width 10^(−exponent)·max(1, |y_j|), column by column.
+      auto differences = [&](int exponent) {
+        std::array<std::array<R, 2 * n>, 2 * n> result;
+        for (int j = 0; j < 2 * n; ++j) {
+          const R yj = from_decimal<R>(y[j]);
+          const R delta = pow(R(10), -exponent) * max(R(1), R(abs(yj)));
+          std::array<std::array<R, 2 * n>, 2> images;
+          for (int side = 0; side < 2; ++side) {
+            nlohmann::json request = {
+                {"h", step}, {"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
+            for (int i = 0; i < 2 * n; ++i)
+              request[i < n ? "q" : "p"].push_back(
+                  i == j ? to_decimal<R>(side == 0 ? R(yj + delta) : R(yj - delta)) : y[i]);
+            const nlohmann::json answer = fine_->request(request);
+            for (int i = 0; i < n; ++i) {
+              images[side][i] = number<R>(*fine_, answer, "q", i, fine_digits());
+              images[side][n + i] = number<R>(*fine_, answer, "p", i, fine_digits());
+            }
+          }
+          for (int i = 0; i < 2 * n; ++i)
+            result[j][i] = (images[0][i] - images[1][i]) / (2 * delta);
+        }
+        return result;
+      };
+      const auto narrow = differences(difference_exponent());
+      if (check) {
+        // Against a coarse width 10^(-ceil(D/3)) too, which a program computing in fewer digits
+        // still resolves: padding below its precision makes both narrow widths see no change at
+        // all (a zero column agrees with itself). At the coarse width the truncation is about
+        // 10^(-2D/3) times the map's third derivative; a change above 10^(-ceil(D/6))·|J| would
+        // need a third derivative near 10^(D/2).
+        const auto wide = differences(difference_exponent() - 1);
+        const auto coarse = differences(coarse_exponent());
+        R largest = 1, change = 0, coarse_change = 0;
+        for (int j = 0; j < 2 * n; ++j)
+          for (int i = 0; i < 2 * n; ++i)
+            largest = max(largest, R(abs(narrow[j][i]))),
+            change = max(change, R(abs(narrow[j][i] - wide[j][i]))),
+            coarse_change = max(coarse_change, R(abs(narrow[j][i] - coarse[j][i])));
+        if (!(coarse_change <= pow(R(10), -((coarse_exponent() + 1) / 2)) * largest))
+          fine_->fail_answer(
+              "its Jacobian by central differences at width 10^-" +
+              std::to_string(difference_exponent()) + " differs by " +
+              to_decimal<R>(coarse_change, 3) + " from the one at width 10^-" +
+              std::to_string(coarse_exponent()) + " (|J| = " + to_decimal<R>(largest, 3) +
+              "): it does not compute with the " + std::to_string(fine_digits()) +
+              " digits its greeting asked for (a program that cannot should decline a "
+              "greeting with more digits than it has)");
+        if (!(change <= from_decimal<R>(epsilon_of_T) * largest))
+          fine_->fail_answer("its Jacobian by central differences changes by " +
+                             to_decimal<R>(change, 3) + " between widths 10^-" +
+                             std::to_string(difference_exponent()) + " and 10^-" +
+                             std::to_string(difference_exponent() - 1) +
+                             ", more than the working precision's epsilon " +
+                             to_decimal<R>(from_decimal<R>(epsilon_of_T), 3) +
+                             " times |J| = " + to_decimal<R>(largest, 3) +
+                             ": it does not compute with the " + std::to_string(fine_digits()) +
+                             " digits its greeting asked for (a program that cannot should decline "
+                             "a greeting with more "
+                             "digits than it has)");
+      }
+      for (int j = 0; j < 2 * n; ++j)
+        for (int i = 0; i < 2 * n; ++i) columns[j][i] = to_decimal<R>(narrow[j][i]);
+    }
+    Matrix<T, 2 * n, 2 * n> jacobian;
+    for (int i = 0; i < 2 * n; ++i)
+      for (int j = 0; j < 2 * n; ++j) jacobian(i, j) = from_decimal<T>(columns[j][i]);
+    return jacobian;
+  }
+
+ private:
+  int fine_digits() const { return 2 * digits_ + 10; }
+  int difference_exponent() const { return (fine_digits() + 2) / 3; }
+  int coarse_exponent() const { return (digits_ + 2) / 3; }
+
+  // p = FL(q, w), taken from the program's last answer when x is the state it gave (a run's next
+  // step starts there): no evaluation of L, and the p the program wrote rather than its round
+  // trip through w.
+  Vector<T, n> momentum_at(const State<T, n>& x) const {
+    if (last_ && last_->first.q == x.q && last_->first.w == x.w) return last_->second;
+    return momentum(system_, x.q, x.w);
+  }
+
+  std::unique_ptr<MapProcess> start(int digits) const {
+    const nlohmann::json greeting = {
+        {"protocol", map_protocol}, {"digits", digits}, {"dimension", n}, {"system", system_json_}};
+    return std::make_unique<MapProcess>(options_, greeting);
+  }
+
+  // answer[key][i], a decimal string with at least `digits` significant digits (or zero), in S.
+  template <class S>
+  static S number(const MapProcess& process, const nlohmann::json& answer, const char* key, int i,
+                  int digits) {
+    const std::string field = std::string(key) + "[" + std::to_string(i) + "]";
+    if (!answer.contains(key) || !answer[key].is_array() ||
+        answer[key].size() != static_cast<std::size_t>(n))
+      process.fail_answer(
+          "expected \"" + std::string(key) + "\": an array of " + std::to_string(n) +
+          " decimal strings (the system has " + std::to_string(n) + " coordinates), got " +
+          (answer.contains(key) ? answer[key].dump().substr(0, 200) : std::string("none")));
+    const nlohmann::json& value = answer[key][static_cast<std::size_t>(i)];
+    if (!value.is_string())
+      process.fail_answer(
+          field + " is " + value.dump().substr(0, 100) +
+          ", not a decimal string (a JSON number would carry a double's 17 digits at most)");
+    const std::string text = value.get<std::string>();
+    const int significant = significant_digits(text);
+    if (significant < 0)
+      process.fail_answer(field + " = \"" + text.substr(0, 100) + "\" is not a decimal number");
+    if (significant > 0 && significant < digits)
+      process.fail_answer(field + " = \"" + text.substr(0, 100) + "\" has " +
+                          std::to_string(significant) +
+                          " significant digits, and the greeting asked for " +
+                          std::to_string(digits) + " (trailing zeros count: write them)");
+    try {
+      return from_decimal<S>(text);
+    } catch (const std::exception& error) {  // beyond the scalar's range
+      process.fail_answer(field + ": " + error.what());
+    }
+  }
+
+  System system_;
+  MapProcess::Options options_;
+  nlohmann::json system_json_;
+  int order_;
+  int digits_;
+  std::unique_ptr<MapProcess> process_;
+  mutable std::unique_ptr<MapProcess> fine_;  // started by the first Jacobian
+  mutable long jacobians_ = 0;                // Jacobians computed so far
+  mutable std::optional<std::pair<State<T, n>, Vector<T, n>>> last_;  // the last answer: (q, w), p
+  static constexpr long recheck = 8;
+};
+
+}  // namespace vivv

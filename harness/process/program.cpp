@@ -1,0 +1,438 @@
+#include "harness/process/program.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <sstream>
+
+#include "core/platform/signals.hpp"
+
+namespace fs = std::filesystem;
+
+namespace vivv {
+namespace {
+
+// The longest line vivv reads from a program: an answer is a few decimal strings.
+constexpr std::size_t longest_line = 1 << 20;
+constexpr std::size_t stderr_kept = 2000;
+
+// The process groups of the running programs, for the signal handler: 0 is a free slot.
+constexpr int group_slots = 64;
+volatile sig_atomic_t running_groups[group_slots] = {};
+
+void register_group(pid_t group) {
+  for (auto& slot : running_groups)
+    if (slot == 0) {
+      slot = group;
+      return;
+    }
+  throw MapProcessError("more than " + std::to_string(group_slots) + " map programs at once");
+}
+
+void unregister_group(pid_t group) {
+  for (auto& slot : running_groups)
+    if (slot == group) slot = 0;
+}
+
+constexpr std::array<int, 6> ending_signals{SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2};
+
+extern "C" void end_map_processes_and_reraise(int signal) {
+  end_map_processes();
+  ::signal(signal, SIG_DFL);
+  raise(signal);
+}
+
+// Once per process, before the first program starts: the signals that end vivv kill the
+// programs first (where vivv has its default action for them), and a program that closed its
+// input makes a write fail with EPIPE instead of ending vivv by SIGPIPE.
+void prepare_signals() {
+  static bool prepared = false;
+  if (prepared) return;
+  prepared = true;
+  for (int signal : ending_signals) {
+    struct sigaction current {};
+    sigaction(signal, nullptr, &current);
+    if (current.sa_handler != SIG_DFL) continue;  // ignored, or a handler of vivv's own
+    struct sigaction action {};
+    action.sa_handler = end_map_processes_and_reraise;
+    sigemptyset(&action.sa_mask);
+    sigaction(signal, &action, nullptr);
+  }
+  ::signal(SIGPIPE, SIG_IGN);
+}
+
+// The program to exec: a name without '/' is looked up on PATH, a path is relative to the case
+// file's folder.
+std::string resolve_program(const std::string& program, const std::string& directory) {
+  auto runnable = [](const fs::path& path) {
+    std::error_code error;
+    return fs::is_regular_file(path, error) && ::access(path.c_str(), X_OK) == 0;
+  };
+  if (program.find('/') != std::string::npos) {
+    fs::path path =
+        fs::path(program).is_absolute() ? fs::path(program) : fs::path(directory) / program;
+    if (!runnable(path))
+      throw MapProcessError("the map program '" + program +
+                            "' is not an executable file (looked for " + path.string() + ")");
+    return path.string();
+  }
+  const char* path_variable = std::getenv("PATH");
+  std::stringstream entries(path_variable ? path_variable : "/usr/local/bin:/usr/bin:/bin");
+  std::string entry;
+  while (std::getline(entries, entry, ':')) {
+    const fs::path candidate = (entry.empty() ? fs::path(".") : fs::path(entry)) / program;
+    if (runnable(candidate)) return candidate.string();
+  }
+  throw MapProcessError("the map program '" + program + "' is not on PATH (" +
+                        std::string(path_variable ? path_variable : "unset") + ")");
+}
+
+using Clock = std::chrono::steady_clock;
+
+int milliseconds_until(Clock::time_point deadline) {
+  const auto left =
+      std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+  return static_cast<int>(std::clamp<long long>(left, 0, 1 << 30));
+}
+
+std::string shortened(const std::string& text, std::size_t at_most = 300) {
+  return text.size() <= at_most
+             ? text
+             : text.substr(0, at_most) + "… (" + std::to_string(text.size()) + " characters)";
+}
+
+}  // namespace
+
+void permit_process(CaseSpec& spec, bool allowed, double timeout_seconds,
+                    const std::string& how_to_allow) {
+  if (spec.discretization.kind != "process") return;
+  if (!allowed) {
+    std::string command;
+    for (const auto& word : spec.discretization.command)
+      command += (command.empty() ? "" : " ") + word;
+    throw CaseError(
+        spec.file, "discretization.command",
+        "this case runs the program '" + command.substr(0, 200) +
+            "' that it names; vivv starts programs named in case files only when asked to: " +
+            how_to_allow);
+  }
+  spec.discretization.process_allowed = true;
+  spec.discretization.process_timeout_seconds = timeout_seconds;
+}
+
+void end_map_processes() noexcept {
+  for (auto& slot : running_groups)
+    if (slot != 0) kill(-static_cast<pid_t>(slot), SIGKILL);
+}
+
+MapProcess::MapProcess(Options options, const nlohmann::json& greeting)
+    : options_(std::move(options)) {
+  const std::string program = resolve_program(options_.command.front(), options_.directory);
+  std::vector<std::string> words = options_.command;
+  std::vector<char*> argv;
+  for (auto& word : words) argv.push_back(word.data());
+  argv.push_back(nullptr);
+  // The program's input, its output, its stderr and the exec status; a pipe that cannot be made
+  // (out of descriptors) closes the ones made before it.
+  int pipes[4][2];
+  for (int made = 0; made < 4; ++made)
+    if (pipe2(pipes[made], O_CLOEXEC) != 0) {
+      const int error = errno;
+      for (int k = 0; k < made; ++k) close(pipes[k][0]), close(pipes[k][1]);
+      throw MapProcessError("cannot create the pipes to start " + name() + ": " +
+                            std::strerror(error));
+    }
+  int(&to_child)[2] = pipes[0];
+  int(&from_child)[2] = pipes[1];
+  int(&child_errors)[2] = pipes[2];
+  int(&exec_status)[2] = pipes[3];
+  prepare_signals();
+  const pid_t parent = getpid();
+  {
+    // No signal between the fork and the group's registration: it would leave the program behind.
+    DeferInterrupts defer;
+    pid_ = fork();
+    if (pid_ == 0) {
+      // Only async-signal-safe calls until exec: vivv may have threads (its progress printer).
+      setpgid(0, 0);
+      prctl(PR_SET_PDEATHSIG, SIGKILL);
+      if (getppid() != parent) _exit(127);
+      dup2(to_child[0], STDIN_FILENO);
+      dup2(from_child[1], STDOUT_FILENO);
+      dup2(child_errors[1], STDERR_FILENO);
+      for (int signal : ending_signals) ::signal(signal, SIG_DFL);
+      ::signal(SIGPIPE, SIG_DFL);
+      ::signal(SIGALRM, SIG_DFL);
+      sigset_t none;
+      sigemptyset(&none);
+      sigprocmask(SIG_SETMASK, &none, nullptr);
+      int error = 0;
+      if (chdir(options_.directory.c_str()) == 0) {
+        execv(program.c_str(), argv.data());
+      }
+      error = errno;
+      [[maybe_unused]] auto written = ::write(exec_status[1], &error, sizeof error);
+      _exit(127);
+    }
+    if (pid_ > 0) {
+      setpgid(pid_, pid_);  // also here: whichever of the two runs first
+      register_group(pid_);
+    }
+  }
+  const int fork_error = errno;
+  close(to_child[0]);
+  close(from_child[1]);
+  close(child_errors[1]);
+  close(exec_status[1]);
+  input_ = to_child[1], output_ = from_child[0], errors_ = child_errors[0];
+  if (pid_ < 0) {
+    for (int fd : {exec_status[0], input_, output_, errors_}) close(fd);
+    throw MapProcessError("cannot start " + name() + ": " + std::strerror(fork_error));
+  }
+  int exec_error = 0;
+  ssize_t got = 0;
+  while ((got = ::read(exec_status[0], &exec_error, sizeof exec_error)) < 0 && errno == EINTR) {
+  }
+  close(exec_status[0]);
+  for (int fd : {input_, output_, errors_}) fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK);
+  try {
+    if (got > 0)
+      throw MapProcessError("cannot start " + name() + " in " + options_.directory + ": " +
+                            std::strerror(exec_error));
+    greet(greeting);
+  } catch (...) {
+    stop();  // no destructor runs for an object whose constructor threw
+    throw;
+  }
+}
+
+void MapProcess::greet(const nlohmann::json& greeting) {
+  const std::string what = "the greeting " + shortened(greeting.dump());
+  send(greeting.dump(), what);
+  const std::string line = receive(what);
+  nlohmann::json answer;
+  try {
+    answer = nlohmann::json::parse(line);
+  } catch (const nlohmann::json::exception&) {
+    fail(what, "it answered a line that is not JSON: " + shortened(line));
+  }
+  if (answer.is_object() && answer.contains("error"))
+    fail(what, "it declined: " + shortened(answer["error"].is_string()
+                                               ? answer["error"].get<std::string>()
+                                               : answer["error"].dump()));
+  if (!answer.is_object() || !answer.contains("protocol") || answer["protocol"] != map_protocol)
+    fail(what, std::string("it answered ") + shortened(line) + ", not {\"protocol\": \"" +
+                   map_protocol + "\"} (or {\"error\": …} to decline)");
+}
+
+MapProcess::~MapProcess() { stop(); }
+
+void MapProcess::stop() noexcept {
+  if (pid_ <= 0) return;
+  // Its input closed, the program ends; what has not within a second is killed, with its group.
+  close(input_);
+  const auto deadline = Clock::now() + std::chrono::seconds(1);
+  while (Clock::now() < deadline) {
+    siginfo_t info{};
+    const int waited = waitid(P_PID, pid_, &info, WEXITED | WNOHANG | WNOWAIT);
+    if ((waited == 0 && info.si_pid == pid_) || (waited < 0 && errno == ECHILD)) break;
+    // What it still writes is read and dropped, so that a full pipe does not hold it.
+    pollfd wait_for{output_, POLLIN, 0};
+    char discard[4096];
+    if (::poll(&wait_for, 1, 5) <= 0 || ::read(output_, discard, sizeof discard) <= 0)
+      ::poll(nullptr, 0, 5);
+  }
+  kill(-pid_, SIGKILL);  // the group: the leader is not reaped yet, so the id is still its own
+  int status = 0;
+  while (waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+  }
+  unregister_group(pid_);
+  close(output_);
+  close(errors_);
+  pid_ = -1;
+}
+
+std::string MapProcess::name() const {
+  std::string joined;
+  for (const auto& word : options_.command) joined += (joined.empty() ? "" : " ") + word;
+  return "'" + shortened(joined, 200) + "'";
+}
+
+nlohmann::json MapProcess::request(const nlohmann::json& message) {
+  const std::string line = message.dump();
+  last_request_ = "request " + std::to_string(requests_ + 1) + " " + shortened(line);
+  send(line, last_request_);
+  const std::string reply = receive(last_request_);
+  ++requests_;
+  nlohmann::json answer;
+  try {
+    answer = nlohmann::json::parse(reply);
+  } catch (const nlohmann::json::exception&) {
+    fail(last_request_, "it answered a line that is not JSON: " + shortened(reply));
+  }
+  if (!answer.is_object())
+    fail(last_request_, "it answered " + shortened(reply) + ", not a JSON object");
+  if (answer.contains("error"))
+    fail(last_request_,
+         "it answered with an error: " + shortened(answer["error"].is_string()
+                                                       ? answer["error"].get<std::string>()
+                                                       : answer["error"].dump()));
+  return answer;
+}
+
+void MapProcess::fail_answer(const std::string& what) const {
+  throw MapProcessError("the map program " + name() + " (in " + options_.directory + "), " +
+                        last_request_ + ": " + what);
+}
+
+void MapProcess::fail(const std::string& request_name, const std::string& what) {
+  drain_stderr();
+  std::string message = "the map program " + name() + " (in " + options_.directory + "), " +
+                        request_name + ": " + what;
+  if (!stderr_tail_.empty()) {
+    std::string tail = stderr_tail_;
+    while (!tail.empty() && std::isspace(static_cast<unsigned char>(tail.back()))) tail.pop_back();
+    message += "; its standard error ended with: " + tail;
+  }
+  throw MapProcessError(message);
+}
+
+void MapProcess::drain_stderr() {
+  char chunk[4096];
+  ssize_t got = 0;
+  while ((got = ::read(errors_, chunk, sizeof chunk)) > 0) {
+    stderr_tail_.append(chunk, static_cast<std::size_t>(got));
+    if (stderr_tail_.size() > stderr_kept) stderr_tail_.erase(0, stderr_tail_.size() - stderr_kept);
+  }
+}
+
+std::string MapProcess::how_it_ended() {
+  // Its output is closed; it has ended or is ending: wait for it a little.
+  const auto deadline = Clock::now() + std::chrono::milliseconds(500);
+  while (Clock::now() < deadline) {
+    siginfo_t info{};
+    if (waitid(P_PID, pid_, &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid_) {
+      if (info.si_code == CLD_EXITED)
+        return "it exited with status " + std::to_string(info.si_status);
+      return "it was ended by signal " + std::to_string(info.si_status) + " (" +
+             strsignal(info.si_status) + ")";
+    }
+    ::poll(nullptr, 0, 5);
+  }
+  return "it closed its standard output";
+}
+
+void MapProcess::send(const std::string& line, const std::string& request_name) {
+  const std::string text = line + "\n";
+  const auto deadline = Clock::now() + std::chrono::milliseconds(
+                                           static_cast<long long>(options_.timeout_seconds * 1000));
+  std::size_t sent = 0;
+  while (sent < text.size()) {
+    const ssize_t wrote = ::write(input_, text.data() + sent, text.size() - sent);
+    if (wrote > 0) {
+      sent += static_cast<std::size_t>(wrote);
+      continue;
+    }
+    if (errno == EINTR) continue;
+    if (errno == EPIPE) fail(request_name, "it stopped reading its input: " + how_it_ended());
+    if (errno != EAGAIN)
+      fail(request_name, std::string("cannot write to it: ") + std::strerror(errno));
+    pollfd writable{input_, POLLOUT, 0};
+    const int left = milliseconds_until(deadline);
+    if (left == 0 || ::poll(&writable, 1, left) == 0)
+      fail(request_name, "it did not read its input within " +
+                             std::to_string(options_.timeout_seconds) + " s (--process-timeout)");
+  }
+}
+
+std::string MapProcess::receive(const std::string& request_name) {
+  const auto deadline = Clock::now() + std::chrono::milliseconds(
+                                           static_cast<long long>(options_.timeout_seconds * 1000));
+  std::size_t end = 0;
+  while ((end = buffer_.find('\n')) == std::string::npos) {
+    if (buffer_.size() > longest_line)
+      fail(request_name,
+           "it wrote a line longer than " + std::to_string(longest_line) + " characters");
+    std::array<pollfd, 2> ready{pollfd{output_, POLLIN, 0}, pollfd{errors_, POLLIN, 0}};
+    const int left = milliseconds_until(deadline);
+    if (left == 0) {
+      std::ostringstream seconds;
+      seconds << options_.timeout_seconds;
+      fail(request_name,
+           "no answer within " + seconds.str() + " s (--process-timeout)" +
+               (buffer_.empty() ? "" : "; it wrote " + shortened(buffer_) + " without a newline"));
+    }
+    // In slices of 100 ms: a program that exited while a child of its own keeps its output open
+    // never shows an end of file, so its exit is looked for too.
+    const int ready_count = ::poll(ready.data(), ready.size(), std::min(left, 100));
+    if (ready_count < 0) {
+      if (errno == EINTR) continue;
+      fail(request_name, std::string("poll: ") + std::strerror(errno));
+    }
+    if (ready[1].revents) drain_stderr();
+    if (ready[0].revents) {
+      char chunk[4096];
+      const ssize_t got = ::read(output_, chunk, sizeof chunk);
+      if (got > 0) buffer_.append(chunk, static_cast<std::size_t>(got));
+      if (got == 0) fail(request_name, "no answer: " + how_it_ended());
+      if (got < 0 && errno != EAGAIN && errno != EINTR)
+        fail(request_name, std::string("cannot read its output: ") + std::strerror(errno));
+    }
+    siginfo_t info{};
+    if (ready_count == 0 && waitid(P_PID, pid_, &info, WEXITED | WNOHANG | WNOWAIT) == 0 &&
+        info.si_pid == pid_) {
+      char chunk[4096];
+      ssize_t got = 0;
+      while ((got = ::read(output_, chunk, sizeof chunk)) > 0)
+        buffer_.append(chunk, static_cast<std::size_t>(got));
+      if (buffer_.find('\n') == std::string::npos)
+        fail(request_name, "no answer: " + how_it_ended());
+    }
+  }
+  std::string line = buffer_.substr(0, end);
+  buffer_.erase(0, end + 1);
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  return line;
+}
+
+int significant_digits(const std::string& text) {
+  std::size_t i = 0;
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+  int digits = 0, mantissa_digits = 0;
+  bool nonzero_seen = false, point = false;
+  for (; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '.' && !point) {
+      point = true;
+      continue;
+    }
+    if (!std::isdigit(static_cast<unsigned char>(c))) break;
+    ++mantissa_digits;
+    if (c != '0') nonzero_seen = true;
+    if (nonzero_seen) ++digits;
+  }
+  if (mantissa_digits == 0) return -1;
+  if (i < text.size()) {
+    if (text[i] != 'e' && text[i] != 'E') return -1;
+    ++i;
+    if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+    const std::size_t exponent = i;
+    while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i;
+    if (i == exponent || i != text.size() || i - exponent > 9) return -1;
+  }
+  return digits;
+}
+
+}  // namespace vivv

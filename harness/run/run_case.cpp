@@ -1,0 +1,132 @@
+#include "harness/run/run_case.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "cases/catalogue.hpp"
+#include "harness/verdicts/order_fit.hpp"
+#include "harness/run/run_system.hpp"
+
+namespace vivv {
+
+std::optional<std::string> unsettled_series(const std::vector<ClaimResult>& claims, double tolerance) {
+  for (const auto& claim : claims)
+    for (const auto& series : claim.series) {
+      if (!series.predicted_order || !series.fit) continue;
+      const OrderFit& fit = *series.fit;
+      // The smallest h left out of the fit is at the floor (the fit drops only leading points as
+      // pre-asymptotic): halving h further cannot show more.
+      const bool floor_reached = fit.sorted.empty() || fit.used.empty() ||
+                                 std::find(fit.used.begin(), fit.used.end(), fit.sorted.back()) == fit.used.end();
+      if (floor_reached || !fit.ok) continue;
+      // Evidence that cannot decide yet — receding orders above all, which must never settle by
+      // dropping points until an interval widens — is unsettled: halving h decides it.
+      const OrderVerdict verdict =
+          judge_order(fit, *series.predicted_order, series.exact_order, tolerance);
+      if (verdict.inconclusive)
+        return claim.id + " / " + series.label + ": " +
+               (verdict.receding ? "receding pairwise orders" : "inconclusive") + " (" +
+               verdict.to_decide + ")";
+      const auto& finest = fit.finest_orders;
+      const bool steady = finest.size() == 2 && std::isfinite(finest[0]) && std::isfinite(finest[1]) &&
+                          std::fabs(finest[1] - finest[0]) <= tolerance / 4 &&
+                          std::fabs(fit.order - finest[1]) <= tolerance / 4;
+      // An exact prediction outside the fit's interval that the finest orders are near but not
+      // yet at: more data at small h decides it. Once the finest orders are within a quarter of
+      // the tolerance of the prediction, a narrower interval decides nothing the verdict needs
+      // (a Toda lattice once ran to its budget, 175 s instead of 12, chasing [2.003, 2.015]
+      // while its finest orders were 2.001 and 2.000).
+      const double predicted = *series.predicted_order;
+      const double distance = finest.size() == 2 ? std::fabs(finest[1] - predicted) : HUGE_VAL;
+      const bool undecided = series.exact_order && std::isfinite(fit.confidence_low) &&
+                             (predicted < fit.confidence_low || predicted > fit.confidence_high) &&
+                             distance > tolerance / 4 && distance <= tolerance;
+      if (!steady || undecided)
+        return claim.id + " / " + series.label + ": fitted order " + format_scalar(fit.order, 4) + " [" +
+               format_scalar(fit.confidence_low, 4) + ", " + format_scalar(fit.confidence_high, 4) +
+               "], finest pairwise orders " +
+               (finest.size() == 2 ? format_scalar(finest[0], 4) + ", " + format_scalar(finest[1], 4)
+                                   : std::string("(fewer than two)")) +
+               (steady ? ": the interval excludes the predicted " + format_scalar(predicted, 3)
+                       : ": not within " + format_scalar(tolerance / 4, 3) + " of each other");
+    }
+  return std::nullopt;
+}
+
+namespace {
+
+// `spec` run in scalar T: formula systems of dimension 1 to 4 in every scalar, catalogue
+// systems compiled in MPFR and through their formula twins in the others.
+template <class T>
+void run_in_scalar(CaseSpec& spec, CaseResult& result, bool refine,
+                   const std::function<void(const std::string&)>& progress) {
+  result.scalar = scalar_name<T>();
+  result.digits = is_mpfr_v<T> ? spec.digits : std::numeric_limits<T>::digits10;
+  result.precision_bits = precision_bits<T>();
+  std::shared_ptr<const FormulaSystemDefinition> formula = spec.formula;
+  if (!formula && !is_mpfr_v<T>) {
+    formula = std::make_shared<const FormulaSystemDefinition>(catalogue_twin(spec.system, spec.parameters));
+    result.implementation = "formula twin of the catalogue system (compiled catalogue systems run in mpfr)";
+  } else {
+    result.implementation = !formula            ? "compiled catalogue system"
+                            : formula->recorded ? "registered C++ system, recorded on a tape"
+                                                : "formula";
+  }
+  if (formula) {
+    result.formula = formula->text;
+    if constexpr (is_mpfr_v<T>) {
+      switch (spec.dimension) {
+        case 3: run_on_system(make_formula_system<T, 3>(*formula), spec, result, refine, progress); return;
+        case 4: run_on_system(make_formula_system<T, 4>(*formula), spec, result, refine, progress); return;
+        default: break;
+      }
+    }
+    switch (spec.dimension) {
+      case 1: run_on_system(make_formula_system<T, 1>(*formula), spec, result, refine, progress); break;
+      case 2: run_on_system(make_formula_system<T, 2>(*formula), spec, result, refine, progress); break;
+      default:
+        throw CaseError(spec.file, "scalar", "a system of " + std::to_string(spec.dimension) +
+                                                 " coordinates runs in mpfr only (double, long double and "
+                                                 "float128 are built for 1 and 2 coordinates)");
+    }
+    return;
+  }
+  if constexpr (is_mpfr_v<T>) {
+    std::vector<std::string> parameters;
+    for (const auto& [name, value] : spec.parameters) parameters.push_back(value);
+    visit_system<T>(spec.system, parameters,
+                    [&](const auto& system) { run_on_system(system, spec, result, refine, progress); });
+  }
+}
+
+}  // namespace
+
+CaseResult run_case(const CaseSpec& case_spec, std::optional<int> digits, bool refine,
+                    const std::function<void(const std::string&)>& progress) {
+  auto started = std::chrono::steady_clock::now();
+  CaseSpec spec = case_spec;
+  if (digits) spec.digits = *digits;
+  refine = refine || spec.refine;
+  CaseResult result;
+  result.sweep.refine = refine;
+  result.sweep.requested_steps = spec.steps;
+  if (spec.scalar == "double") {
+    run_in_scalar<double>(spec, result, refine, progress);
+  } else if (spec.scalar == "long double") {
+    run_in_scalar<long double>(spec, result, refine, progress);
+  } else if (spec.scalar == "float128") {
+    run_in_scalar<quad>(spec, result, refine, progress);
+  } else {
+    PrecisionGuard guard(spec.digits);
+    run_in_scalar<mpfr_real>(spec, result, refine, progress);
+  }
+  result.spec = spec;  // with the sweep actually used
+  result.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return result;
+}
+
+}  // namespace vivv

@@ -1,0 +1,35 @@
+// run_on_system: a case run on one system type, compiled once per system and
+// scalar (harness/run/run_system_impl.hpp holds the definition, CMake generates the
+// explicit instantiations of the catalogue systems and of formula systems of
+// dimension 1 to 4, grouped by scalar and dimension into a few units).
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "cases/case_file.hpp"
+#include "cases/systems.hpp"
+#include "core/formulas/formula_system.hpp"
+#include "harness/run/run_case.hpp"
+
+namespace vivv {
+
+// Runs every claim of `spec` on `system` into `result`; with `refine`, extends spec.steps.
+template <LagrangianSystem System>
+void run_on_system(const System& system, CaseSpec& spec, CaseResult& result, bool refine,
+                   const std::function<void(const std::string&)>& progress);
+
+// Scalar names CMake can write into a generated file.
+using long_double = long double;
+
+// Formula systems by dimension, for the generated instantiations.
+template <class T>
+using FormulaSystem1 = FormulaSystem<T, 1>;
+template <class T>
+using FormulaSystem2 = FormulaSystem<T, 2>;
+template <class T>
+using FormulaSystem3 = FormulaSystem<T, 3>;
+template <class T>
+using FormulaSystem4 = FormulaSystem<T, 4>;
+
+}  // namespace vivv

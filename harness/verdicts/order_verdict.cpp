@@ -1,0 +1,432 @@
+// The order verdict (harness/verdicts/order_fit.hpp, judge_order; docs/claims.md, "The order verdict"):
+// a fitted order and the finest pairwise orders against a prediction, the shapes of a sweep not
+// yet asymptotic (approach, short rise, dip, two points), receding evidence, and the smallest
+// lower-order term a verdict could have caught. The fit itself is in order_fit.cpp.
+#include <cstdio>
+#include <limits>
+#include <optional>
+
+#include "harness/verdicts/order_fit.hpp"
+
+namespace vivv {
+namespace {
+
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// x with `digits` significant digits: "0.62", "1.98", "1e+06".
+std::string format_number(long double x, int digits = 3) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*Lg", digits, x);
+  return buffer;
+}
+
+// A sweep not yet asymptotic, as opposed to one that refutes the prediction: the pairwise orders
+// from the largest h down to the finest point the fit used (the leading points it dropped as
+// pre-asymptotic included, none left out at the floor) still move toward the prediction p, the
+// last change at most `approach_ratio` times the one before, and their Aitken limit
+// c + (c − b) r/(1 − r) (b, c the last two orders, r the ratio of the last two changes) is within
+// the tolerance of p. For e(h) = C h^p (1 + d h^m + …) the pairwise orders approach p, their
+// distance to it falling by 2^−m ≤ 1/2 per halving of h: the midpoint's p_begin on Duffing
+// showed 1.42, 1.79, 1.91 at N = 8 … 64 and 1.95, 1.98, 1.99 after. A method of another order
+// approaches that order instead (an order-1 one 0.6, 0.8, 0.9: limit 1), and fails.
+constexpr double approach_ratio = 0.6;
+
+struct Approach {
+  std::vector<double> orders;  // the pairwise orders, largest h first
+  double ratio = kNaN;         // of the last change to the one before
+  double limit = kNaN;         // their Aitken limit
+};
+
+std::optional<Approach> approach_to(const OrderFit& fit, double predicted, double tolerance) {
+  const auto is_used = [&fit](int index) {
+    return std::find(fit.used.begin(), fit.used.end(), index) != fit.used.end();
+  };
+  std::size_t finest = 0;  // position in fit.sorted of the finest point used
+  bool any = false;
+  for (std::size_t k = 0; k < fit.sorted.size(); ++k)
+    if (is_used(fit.sorted[k])) finest = k, any = true;
+  if (!any || finest > fit.pairwise_orders.size()) return std::nullopt;
+  for (std::size_t k = 0; k < finest; ++k) {
+    if (is_used(fit.sorted[k])) continue;
+    const auto dropped =
+        std::find_if(fit.dropped.begin(), fit.dropped.end(),
+                     [&](const DroppedPoint& point) { return point.first == fit.sorted[k]; });
+    if (dropped == fit.dropped.end() || dropped->second.rfind("pre-asymptotic", 0) != 0)
+      return std::nullopt;
+  }
+  Approach approach;
+  approach.orders.assign(fit.pairwise_orders.begin(), fit.pairwise_orders.begin() + finest);
+  if (approach.orders.size() < 3) return std::nullopt;
+  const double a = approach.orders[finest - 3], b = approach.orders[finest - 2],
+               c = approach.orders[finest - 1];
+  if (!(std::isfinite(a) && std::isfinite(b) && std::isfinite(c))) return std::nullopt;
+  const double before = b - a, last = c - b;
+  // Monotone, and still short of p in the direction it moves.
+  if (!(before * last > 0 && last * (predicted - c) > 0)) return std::nullopt;
+  approach.ratio = last / before;
+  if (!(approach.ratio <= approach_ratio)) return std::nullopt;
+  approach.limit = c + last * approach.ratio / (1 - approach.ratio);
+  if (!(std::fabs(approach.limit - predicted) <= tolerance)) return std::nullopt;
+  return approach;
+}
+
+// The pairwise orders between the points above the floor, largest h first (the pre-asymptotic
+// ones included: a rule that dropped leading points must not hide where the orders go).
+std::vector<double> orders_above_floor(const OrderFit& fit) {
+  const std::size_t count = static_cast<std::size_t>(std::max(fit.above_floor - 1, 0));
+  return {fit.pairwise_orders.begin(),
+          fit.pairwise_orders.begin() + std::min(count, fit.pairwise_orders.size())};
+}
+
+// Receding evidence: the last pairwise order c moves from the one before, b, by more than the
+// noise, the change before it going the same way, away from the prediction p — or toward it on a
+// course whose Aitken limit (from the change before, beyond the noise and contracting) lies beyond
+// the tolerance on the far side, or that is not contracting at all. For a lower bound a rise
+// counts only above p, and only where it began within the tolerance of p (below).
+struct Recession {
+  std::vector<double> orders;
+  double change = kNaN;  // c − b
+};
+
+std::optional<Recession> receding_from(const OrderFit& fit, double predicted, bool exact,
+                                       double tolerance) {
+  Recession recession;
+  recession.orders = orders_above_floor(fit);
+  const std::vector<double>& o = recession.orders;
+  if (o.size() < 2) return std::nullopt;
+  const double b = o[o.size() - 2], c = o.back();
+  if (!(std::isfinite(b) && std::isfinite(c))) return std::nullopt;
+  const double change = c - b;
+  recession.change = change;
+  if (!(std::fabs(change) > receding_noise)) return std::nullopt;
+  // A trend, not a wiggle: the change before goes the same way. One change cannot tell them
+  // apart (taylor-3 ψ at θ = 0 on the pendulum in double shows 3.98, 3.87 above the floor, then
+  // 3.94 below it: the local error of a correct method, its h⁵ and h⁶ terms competing).
+  if (o.size() < 3 || !std::isfinite(o[o.size() - 3])) return std::nullopt;
+  const double before = b - o[o.size() - 3];
+  if (!(before * change > 0)) return std::nullopt;
+  const bool toward = (predicted - c) * change > 0;
+  if (!exact && change > 0) {
+    // Rising orders and a lower bound: toward p from below is an approach, not a recession. Above
+    // p they announce a cancellation ahead (the error heading for a zero at smaller h): benign
+    // where the rise began among orders beyond p + tol (a higher-order term cancelled by the h^p
+    // one), a lower-order term's where it began within the tolerance of p — the h^p term
+    // dominated there, and only a term of lower order grows against it as h shrinks. An
+    // off-centre midpoint (α = 0.4995) on a non-separable L showed 2.00, 2.10, 2.27, 2.80 at
+    // N = 8 … 128, then −0.85 and 0.56, 0.82 beyond its cancellation.
+    if (toward || c <= predicted) return std::nullopt;
+    std::size_t start = o.size() - 1;
+    while (start >= 1 && std::isfinite(o[start - 1]) && o[start] - o[start - 1] > receding_noise)
+      --start;
+    if (o[start] <= predicted + tolerance) return recession;
+    return std::nullopt;
+  }
+  if (!toward) return recession;
+  // Toward p: where does the course end? A change before it below the noise says nothing of that.
+  if (!(std::fabs(before) > receding_noise)) return std::nullopt;
+  const double ratio = change / before;
+  if (ratio >= 1) return recession;  // not contracting: no limit in sight
+  const double limit = c + change * ratio / (1 - ratio);
+  const bool beyond = change < 0 ? limit < predicted - tolerance : limit > predicted + tolerance;
+  if (beyond) return recession;
+  return std::nullopt;
+}
+
+// Halvings of h after which orders that recede by `change` per halving, growing by
+// max(2, ratio) each time (a lower-order term's share doubles per halving at least), would cross
+// the tolerance: at least 1, at most 12.
+int halvings_to_cross(const Recession& recession, double predicted, bool exact, double tolerance) {
+  const std::vector<double>& o = recession.orders;
+  // Rising orders against a lower bound head for a cancellation; past it the lower-order term
+  // shows. Where it lies the orders cannot say: two halvings at least.
+  if (!exact && recession.change > 0) return 2;
+  const double c = o.back();
+  const double edge = recession.change < 0 ? predicted - tolerance : predicted + tolerance;
+  double distance = std::fabs(edge - c);
+  double growth = 2;
+  if (o.size() >= 3 && std::isfinite(o[o.size() - 3])) {
+    const double before = o[o.size() - 2] - o[o.size() - 3];
+    if (before * recession.change > 0) growth = std::max(growth, recession.change / before);
+  }
+  double step = std::fabs(recession.change);
+  int halvings = 1;
+  for (; halvings < 12; ++halvings) {
+    step *= growth;
+    distance -= step;
+    if (distance <= 0) break;
+  }
+  return halvings;
+}
+
+// A short sweep still rising toward p: every pairwise order above the floor rises, the finest
+// within the tolerance (with two orders, within it once the rise is repeated at half its size),
+// and the rise slows (each change below the one before). A correct midpoint showed 1.66, 1.93
+// with three step counts, and 1.36, 1.69, 1.92 at N = 3 … 24 (changes contracting by 0.70): one
+// more halving decides. Orders that rise by growing steps (1.0, 1.3, 1.75) approach nothing.
+std::optional<std::vector<double>> rising_toward(const OrderFit& fit, double predicted,
+                                                 bool exact, double tolerance) {
+  const std::vector<double> o = orders_above_floor(fit);
+  if (o.size() < 2) return std::nullopt;
+  for (double p : o)
+    if (!std::isfinite(p)) return std::nullopt;
+  for (std::size_t k = 1; k < o.size(); ++k) {
+    const double change = o[k] - o[k - 1];
+    if (!(change > 0)) return std::nullopt;
+    if (k >= 2 && !(change < o[k - 1] - o[k - 2])) return std::nullopt;
+  }
+  if (o.back() > predicted + tolerance) return std::nullopt;
+  // The finest within the tolerance; with two orders only, the finest plus its last rise will do:
+  // where the rise is yet to be seen slowing, it is taken to halve per halving of h (the
+  // contraction of C h^p (1 + d h)), the least a correct method shows asymptotically.
+  const double reach = o.size() == 2 ? o.back() + (o.back() - o.front()) : o.back();
+  if (!order_agrees(std::min(reach, predicted), predicted, exact, tolerance)) return std::nullopt;
+  return o;
+}
+
+std::string listed_orders(const std::vector<double>& orders) {
+  std::string text;
+  for (double p : orders) text += (text.empty() ? "" : ", ") + format_number(p, 3);
+  return text;
+}
+
+// judge_order without the lower-order detection limit (which judges synthetic sweeps with it).
+OrderVerdict judge_order_rules(const OrderFit& fit, double predicted, bool exact, double tolerance) {
+  OrderVerdict verdict;
+  if (!fit.ok) {
+    verdict.explanation = "no observed order (" + fit.reason + "): fails";
+    return verdict;
+  }
+  const std::string interval = "[" + format_number(fit.confidence_low, 4) + ", " +
+                               format_number(fit.confidence_high, 4) + "]";
+  const std::string observed = "observed order " + format_number(fit.order, 4) + " (" +
+                               format_number(100 * fit.confidence, 3) + "% interval " + interval +
+                               " from " + std::to_string(fit.used.size()) + " points)";
+  const std::string bound =
+      format_number(predicted, 4) + (exact ? " ± " : " − ") + format_number(tolerance, 3);
+  const bool fit_agrees = order_agrees(fit.order, predicted, exact, tolerance);
+  std::string finest_text;
+  bool finest_agree = true;
+  for (double p : fit.finest_orders) {
+    finest_text += (finest_text.empty() ? "" : ", ") + format_number(p, 3);
+    finest_agree = finest_agree && std::isfinite(p) && order_agrees(p, predicted, exact, tolerance);
+  }
+  const std::string finest = "finest pairwise order" + std::string(fit.finest_orders.size() > 1 ? "s " : " ") +
+                             finest_text;
+  const std::string relation = exact ? "within " : ">= ";
+  const double half_width = (fit.confidence_high - fit.confidence_low) / 2;
+  verdict.detection_limit = (exact ? "orders outside " + format_number(predicted - tolerance, 4) +
+                                         " … " + format_number(predicted + tolerance, 4)
+                                   : "orders below " + format_number(predicted - tolerance, 4)) +
+                            " fail; the fit resolves the order to " +
+                            (std::isfinite(half_width) ? "±" + format_number(half_width, 2)
+                                                       : std::string("no interval (2 points)")) +
+                            " at " + format_number(100 * fit.confidence, 3) + "%";
+  // A note only where it changes what the reader should do: on a pass whose interval excludes
+  // the exact order while the finest pairwise orders have not yet settled on it (within tol/4,
+  // --refine's own stop rule); once they have, --refine would stop at once and the note would
+  // send the reader nowhere. A failure says why it fails without it.
+  bool settled = !fit.finest_orders.empty();
+  for (double p : fit.finest_orders) settled = settled && std::fabs(p - predicted) <= tolerance / 4;
+  const std::string excluded_note =
+      exact && !settled && std::isfinite(fit.confidence_low) &&
+              (predicted < fit.confidence_low || predicted > fit.confidence_high)
+          ? "; note: the fit's " + format_number(100 * fit.confidence, 3) +
+                "% interval excludes the predicted " + format_number(predicted, 4) +
+                " (the sweep is not fully asymptotic: --refine extends it)"
+          : std::string();
+  if (!(fit_agrees && finest_agree)) {
+    if (const auto approach = approach_to(fit, predicted, tolerance)) {
+      std::string orders;
+      for (double p : approach->orders)
+        orders += (orders.empty() ? "" : ", ") + format_number(p, 3);
+      verdict.inconclusive = true;
+      verdict.to_decide =
+          "the sweep extended to smaller h (--refine) until the finest pairwise orders reach " +
+          bound;
+      verdict.explanation =
+          observed +
+          (fit_agrees ? " " + relation + bound + ", but the " + finest + " are not"
+                      : (finest_agree ? " not " + relation + bound + " (the " + finest + " are)"
+                                      : " and " + finest + " not " + relation + bound)) +
+          "; the pairwise orders " + orders + " (largest h first) still approach " +
+          format_number(predicted, 4) + ", the last change " + format_number(approach->ratio, 2) +
+          " times the one before, toward " + format_number(approach->limit, 3) +
+          ": the sweep is not yet asymptotic, and does not refute the prediction; to decide: " +
+          verdict.to_decide;
+      return verdict;
+    }
+    if (const auto rising = rising_toward(fit, predicted, exact, tolerance)) {
+      verdict.inconclusive = true;
+      verdict.to_decide = "one more halving of h (--refine, or the sweep extended to smaller h)";
+      verdict.explanation =
+          observed +
+          (fit_agrees ? " " + relation + bound + ", but not the " + finest
+                      : " not " + relation + bound + " (the finest pairwise order " +
+                            format_number(rising->back(), 3) + " is)") +
+          "; the pairwise orders " + listed_orders(*rising) +
+          " (largest h first) rise toward " + format_number(predicted, 4) +
+          ", each rise smaller than the one before: a short sweep not yet asymptotic, which does "
+          "not refute the prediction; to decide: " +
+          verdict.to_decide;
+      return verdict;
+    }
+    // A dip: the fit agrees, and the two finest pairwise orders lie on either side of p, each
+    // beyond the tolerance, while the error still falls — the norm of an error whose component
+    // changes sign between those steps, not yet a power law at the small-h end. A degree-2
+    // Galerkin rule on the restricted three-body problem showed 4.53, 6.46, 2.82 at N = 8 … 64
+    // (fit 4.79 against 4) and 3.85, 3.97, 3.99 after. An error that grew (an order ≤ 0) is not
+    // a dip: a scheme that stops converging fails.
+    if (fit_agrees && fit.finest_orders.size() == 2) {
+      const double b = fit.finest_orders[0], c = fit.finest_orders[1];
+      const bool straddles = (b > predicted + tolerance && c < predicted - tolerance) ||
+                             (b < predicted - tolerance && c > predicted + tolerance);
+      if (std::isfinite(b) && std::isfinite(c) && c > 0 && straddles) {
+        verdict.inconclusive = true;
+        verdict.to_decide = "the sweep extended to smaller h (--refine) past the dip";
+        verdict.explanation =
+            observed + " " + relation + bound + ", but the " + finest + " lie on either side of " +
+            format_number(predicted, 4) +
+            ": the error dips between them (a component changing sign), not yet a "
+            "power law at the small-h end, and does not refute the prediction; to decide: " +
+            verdict.to_decide;
+        return verdict;
+      }
+    }
+    // One pairwise order is not an asymptote: two points above the floor, the smaller steps
+    // hidden below it, cannot tell a slope still on its way from the order — the hidden points
+    // can. A degree-2 Galerkin rule's p_end on a Duffing oscillator in double showed 1.44 between
+    // N = 8 and 16 (3.39, 3.78 after, in float128), its N = 32 and 64 hidden by the reference's
+    // floor.
+    const bool floor_hid = std::any_of(
+        fit.dropped.begin(), fit.dropped.end(),
+        [](const DroppedPoint& point) { return point.second.rfind("at the floor", 0) == 0; });
+    if (fit.used.size() == 2 && floor_hid) {
+      verdict.inconclusive = true;
+      verdict.to_decide = "more step sizes above the floor";
+      verdict.explanation =
+          observed + " not " + relation + bound +
+          ", but from two points, the smaller steps hidden by the floor: one pairwise order "
+          "cannot tell a slope still on its way from the order; to decide: " +
+          verdict.to_decide;
+      return verdict;
+    }
+    if (!fit_agrees && !finest_agree) {
+      verdict.explanation = observed + " and " + finest + " not " + relation + bound + ": fails";
+    } else if (fit_agrees) {
+      verdict.explanation =
+          observed + " " + relation + bound + ", but the " + finest +
+          " are not: at the small-h end the error does not yet (or no longer) "
+          "decrease at the predicted rate — a pre-asymptotic sweep (refine it) or "
+          "a scheme that stops converging: fails";
+    } else {
+      verdict.explanation = observed + " not " + relation + bound + ", although the " + finest +
+                            (fit.finest_orders.size() > 1 ? " are" : " is") +
+                            ": the fit over the asymptotic range disagrees: fails";
+    }
+    return verdict;
+  }
+  // The point estimate and the finest orders agree. The interval must also exclude p − 1 (and
+  // p + 1 for an exact p): the fit must tell the predicted order from the next lower integer
+  // order (and higher), or a method one order short could pass on a fit that cannot tell them
+  // apart ("observed 4.10, 95% interval [−9.06, 17.26] from 3 points ≥ 2 − 0.2" once passed).
+  // Receding evidence never passes: orders that move away from the prediction are where a small
+  // lower-order term shows first (an off-centre midpoint at α = 0.49 on a non-separable L gave
+  // 1.96, 1.94, 1.89, a fit of 1.95, and order 1 only at N = 4096).
+  if (const auto recession = receding_from(fit, predicted, exact, tolerance)) {
+    verdict.inconclusive = true;
+    verdict.receding = true;
+    verdict.halvings_to_decide = halvings_to_cross(*recession, predicted, exact, tolerance);
+    const int k = verdict.halvings_to_decide;
+    const std::string halvings = std::to_string(k) + " halving" + (k > 1 ? "s" : "") +
+                                 " of h (step counts " + std::to_string(1 << k) + " times the finest)";
+    verdict.to_decide =
+        !exact && recession->change > 0
+            ? "the sweep extended to smaller h (--refine) past the cancellation its rising orders "
+              "announce, until the order beyond it shows: at least " + halvings
+            : "the sweep extended to smaller h (--refine) until its pairwise orders settle or cross " +
+                  bound + ": going on as they go, they would cross it in about " + halvings;
+    verdict.explanation =
+        observed + " " + relation + bound + ", and so " +
+        (fit.finest_orders.size() > 1 ? "are the " : "is the ") + finest + ", but the pairwise orders " +
+        listed_orders(recession->orders) + " (largest h first) move " +
+        ((predicted - recession->orders.back()) * recession->change > 0 ? "toward " : "away from ") +
+        format_number(predicted, 4) + (recession->change < 0 ? ", falling by " : ", rising by ") +
+        format_number(std::fabs(recession->change), 2) + " at the finest step (more than their noise " +
+        format_number(receding_noise, 2) + ")" +
+        ((predicted - recession->orders.back()) * recession->change > 0 ? " on a course that ends beyond the tolerance" : "") +
+        ": the evidence recedes — a lower-order term whose share grows as h shrinks does this — "
+        "and confirms nothing; to decide: " + verdict.to_decide;
+    return verdict;
+  }
+  const bool resolves_lower = fit.confidence_low > predicted - 1;
+  const bool resolves_higher = !exact || fit.confidence_high < predicted + 1;
+  if (!(resolves_lower && resolves_higher)) {
+    verdict.inconclusive = true;
+    verdict.to_decide =
+        "more step sizes in the asymptotic range (--refine, or a sweep extended to smaller h) "
+        "until the interval excludes " +
+        format_number(predicted - 1, 4) +
+        (exact ? " and " + format_number(predicted + 1, 4) : std::string());
+    verdict.explanation =
+        observed + " " + relation + bound + ", and so " +
+        (fit.finest_orders.size() > 1 ? "are the " : "is the ") + finest + ", but the interval " +
+        (std::isfinite(half_width)
+             ? "contains " + format_number(resolves_lower ? predicted + 1 : predicted - 1, 4)
+             : std::string("is unbounded with two points")) +
+        ": the fit cannot tell the predicted order from its neighbour; to decide: " +
+        verdict.to_decide;
+    return verdict;
+  }
+  verdict.holds = true;
+  verdict.explanation = observed + " " + relation + bound + ", and so " +
+                        (fit.finest_orders.size() > 1 ? "are the " : "is the ") + finest +
+                        ": holds" + excluded_note;
+  return verdict;
+}
+
+}  // namespace
+
+double lower_order_detection_limit(const OrderFit& fit, double predicted, bool exact, double tolerance) {
+  const std::size_t count = std::min<std::size_t>(static_cast<std::size_t>(std::max(fit.above_floor, 0)),
+                                                  fit.log_h.size());
+  if (count < 2) return kNaN;
+  const long double log_h_min = fit.log_h[count - 1];
+  const auto passes = [&](double b) {
+    std::vector<LogPoint> points(count);
+    for (std::size_t k = 0; k < count; ++k) {
+      points[k].index = static_cast<int>(k);
+      points[k].log_h = fit.log_h[k];
+      points[k].log_error = predicted * points[k].log_h +
+                            std::log1p(static_cast<long double>(b) * std::exp(log_h_min - points[k].log_h));
+    }
+    return judge_order_rules(fit_order_in_logs(std::move(points)), predicted, exact, tolerance).holds;
+  };
+  if (!passes(0)) return kNaN;
+  double low = 0, high = 1e-6;
+  while (passes(high)) {
+    low = high;
+    high *= 4;
+    if (high > 1e3) return kNaN;
+  }
+  for (int i = 0; i < 40 && high - low > 1e-3 * high; ++i) {
+    const double middle = low > 0 ? std::sqrt(low * high) : high / 4;
+    (passes(middle) ? low : high) = middle;
+  }
+  return high;
+}
+
+OrderVerdict judge_order(const OrderFit& fit, double predicted, bool exact, double tolerance) {
+  OrderVerdict verdict = judge_order_rules(fit, predicted, exact, tolerance);
+  if (!fit.ok) return verdict;
+  const double b = lower_order_detection_limit(fit, predicted, exact, tolerance);
+  if (std::isfinite(b))
+    verdict.detection_limit += "; a lower-order term b·h_min/h beside h^" + format_number(predicted, 4) +
+                               " (e = C·h^" + format_number(predicted, 4) +
+                               "·(1 + b·h_min/h)) with b >= " + format_number(b, 2) +
+                               ", its share of the error at the smallest h, would not have passed";
+  return verdict;
+}
+
+}  // namespace vivv
+
