@@ -91,10 +91,9 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
   // notes can be long, is HTML below the plot, where it wraps instead of being clipped.
   std::size_t legend_rows = 2;
   const double legend_top = axis_bottom + 50, height = legend_top + 18.0 * legend_rows + 6;
-  auto px = [&](double x) { return left + (x - *x_low) / (*x_high - *x_low) * (right - left); };
-  auto py = [&](double y) {
-    return plot_bottom - (y - *y_low) / (*y_high - *y_low) * (plot_bottom - top);
-  };
+  const PlotAxes axes{left, right, top, plot_bottom, axis_bottom, *x_low, *x_high, *y_low, *y_high};
+  auto px = [&](double x) { return axes.px(x); };
+  auto py = [&](double y) { return axes.py(y); };
   const double zero_y = plot_bottom + zero_band / 2 + 2;
   const std::string clip = "clip-" + identifier(key);
 
@@ -108,27 +107,9 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
   svg << "<defs><clipPath id=\"" << clip << "\"><rect x=\"" << left << "\" y=\"" << top
       << "\" width=\"" << right - left << "\" height=\"" << plot_bottom - top
       << "\"/></clipPath></defs>\n";
-  svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << right - left << "\" height=\""
-      << axis_bottom - top << "\" fill=\"#fbfcfe\" stroke=\"#c5ccd8\"/>\n";
-  // Grid and ticks.
-  svg << "<g class=\"tick\">\n";
-  for (const auto& [x, label] : log_ticks(*x_low, *x_high)) {
-    svg << "<line x1=\"" << fixed(px(x)) << "\" y1=\"" << top << "\" x2=\"" << fixed(px(x))
-        << "\" y2=\"" << axis_bottom << "\" stroke=\"#e3e7ee\"/>";
-    svg << "<text x=\"" << fixed(px(x)) << "\" y=\"" << axis_bottom + 17
-        << "\" text-anchor=\"middle\">" << label << "</text>\n";
-  }
-  for (const auto& [y, label] : log_ticks(*y_low, *y_high)) {
-    svg << "<line x1=\"" << left << "\" y1=\"" << fixed(py(y)) << "\" x2=\"" << right << "\" y2=\""
-        << fixed(py(y)) << "\" stroke=\"#e3e7ee\"/>";
-    svg << "<text x=\"" << left - 6 << "\" y=\"" << fixed(py(y) + 4) << "\" text-anchor=\"end\">"
-        << label << "</text>\n";
-  }
-  svg << "</g>\n";
-  svg << "<text x=\"" << (left + right) / 2 << "\" y=\"" << axis_bottom + 36
-      << "\" text-anchor=\"middle\">step h</text>\n";
-  svg << "<text transform=\"translate(16 " << (top + plot_bottom) / 2
-      << ") rotate(-90)\" text-anchor=\"middle\">error</text>\n";
+  write_background(svg, axes);
+  write_grid(svg, axes, log_ticks(*x_low, *x_high), log_ticks(*y_low, *y_high), "\n");
+  write_axis_titles(svg, axes, "step h", "error");
   // The stated floor of the main series, when it falls inside the plotted range.
   if (std::isfinite(floor_log) && floor_log > *y_low && floor_log < *y_high) {
     svg << "<g data-floor=\"1\"><line x1=\"" << left << "\" y1=\"" << fixed(py(floor_log))

@@ -1,12 +1,13 @@
 // What the report page and its plots share (reports/html_report.cpp, reports/html/*.cpp): a
-// report's strings, escaping, the series colours, and the frame of a log-log plot — its points,
-// its series and its decade ticks.
+// report's strings, escaping, the series colours, and the frame of a plot — its points, its
+// series, its decade ticks and its axes (the box, the grid with its tick labels, the titles).
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -141,6 +142,56 @@ inline std::string fixed(double x) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.1f", x);
   return buffer;
+}
+
+// --- The axes every plot draws ---------------------------------------------
+
+// A plot's box on the page and the ranges of its axes (log10 values on a log axis): data at
+// (x, y) is drawn at (px(x), py(y)). The background and the vertical grid lines reach down to
+// axis_bottom, which lies below plot_bottom when a band (values that have no logarithm) sits
+// under the data.
+struct PlotAxes {
+  double left = 0, right = 0, top = 0, plot_bottom = 0, axis_bottom = 0;
+  double x_low = 0, x_high = 1, y_low = 0, y_high = 1;
+  double px(double x) const { return left + (x - x_low) / (x_high - x_low) * (right - left); }
+  double py(double y) const {
+    return plot_bottom - (y - y_low) / (y_high - y_low) * (plot_bottom - top);
+  }
+};
+
+using Ticks = std::vector<std::pair<double, std::string>>;
+
+// The plot's background.
+inline void write_background(std::ostream& svg, const PlotAxes& axes) {
+  svg << "<rect x=\"" << axes.left << "\" y=\"" << axes.top << "\" width=\"" << axes.right - axes.left
+      << "\" height=\"" << axes.axis_bottom - axes.top << "\" fill=\"#fbfcfe\" stroke=\"#c5ccd8\"/>\n";
+}
+
+// The grid with its tick labels, x below the box and y to its left; `between` follows each tick
+// ("\n" keeps the page's source readable, "" keeps a figure's source on few lines).
+inline void write_grid(std::ostream& svg, const PlotAxes& axes, const Ticks& x_ticks,
+                       const Ticks& y_ticks, const char* between) {
+  svg << "<g class=\"tick\">" << between;
+  for (const auto& [x, label] : x_ticks)
+    svg << "<line x1=\"" << fixed(axes.px(x)) << "\" y1=\"" << axes.top << "\" x2=\""
+        << fixed(axes.px(x)) << "\" y2=\"" << axes.axis_bottom << "\" stroke=\"#e3e7ee\"/><text x=\""
+        << fixed(axes.px(x)) << "\" y=\"" << axes.axis_bottom + 17 << "\" text-anchor=\"middle\">"
+        << label << "</text>" << between;
+  for (const auto& [y, label] : y_ticks)
+    svg << "<line x1=\"" << axes.left << "\" y1=\"" << fixed(axes.py(y)) << "\" x2=\"" << axes.right
+        << "\" y2=\"" << fixed(axes.py(y)) << "\" stroke=\"#e3e7ee\"/><text x=\"" << axes.left - 6
+        << "\" y=\"" << fixed(axes.py(y) + 4) << "\" text-anchor=\"end\">" << label << "</text>"
+        << between;
+  svg << "</g>\n";
+}
+
+// The axes' titles: x centred below the tick labels, y turned along the left edge.
+inline void write_axis_titles(std::ostream& svg, const PlotAxes& axes, const std::string& x_title,
+                              const std::string& y_title) {
+  svg << "<text x=\"" << (axes.left + axes.right) / 2 << "\" y=\"" << axes.axis_bottom + 36
+      << "\" text-anchor=\"middle\">" << x_title << "</text>\n<text transform=\"translate(16 "
+      << (axes.top + axes.plot_bottom) / 2 << ") rotate(-90)\" text-anchor=\"middle\">" << y_title
+      << "</text>\n";
 }
 
 }  // namespace vivv::html

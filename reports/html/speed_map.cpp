@@ -74,10 +74,9 @@ std::string render_speed_map(const json& claim, const std::string& key) {
   const double width = 640, left = 72, right = width - 24, top = 14, plot_bottom = 214;
   const double zero_band = any_zero ? 36 : 0, axis_bottom = plot_bottom + zero_band;
   const double legend_top = axis_bottom + 50, height = legend_top + 10;
-  auto px = [&](double x) { return left + (x - *x_low) / (*x_high - *x_low) * (right - left); };
-  auto py = [&](double y) {
-    return plot_bottom - (y - *y_low) / (*y_high - *y_low) * (plot_bottom - top);
-  };
+  const PlotAxes axes{left, right, top, plot_bottom, axis_bottom, *x_low, *x_high, *y_low, *y_high};
+  auto px = [&](double x) { return axes.px(x); };
+  auto py = [&](double y) { return axes.py(y); };
   const double zero_y = plot_bottom + 23;  // the markers sit below the band's label
   const std::string color = series_colors[0];
 
@@ -87,26 +86,9 @@ std::string render_speed_map(const json& claim, const std::string& key) {
       << "\" data-claim-map=\"" << escape(key) << "\" role=\"img\" aria-label=\"log-log map of "
       << "h_max against the speed |w| for " << escape(key) << "\">\n";
   svg << "<title>" << escape(key) << ": h_max against the speed |w| (log-log)</title>\n";
-  svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << right - left << "\" height=\""
-      << axis_bottom - top << "\" fill=\"#fbfcfe\" stroke=\"#c5ccd8\"/>\n";
-  svg << "<g class=\"tick\">\n";
-  for (const auto& [x, label] : log_ticks(*x_low, *x_high)) {
-    svg << "<line x1=\"" << fixed(px(x)) << "\" y1=\"" << top << "\" x2=\"" << fixed(px(x))
-        << "\" y2=\"" << axis_bottom << "\" stroke=\"#e3e7ee\"/>";
-    svg << "<text x=\"" << fixed(px(x)) << "\" y=\"" << axis_bottom + 17
-        << "\" text-anchor=\"middle\">" << label << "</text>\n";
-  }
-  for (const auto& [y, label] : log_ticks(*y_low, *y_high)) {
-    svg << "<line x1=\"" << left << "\" y1=\"" << fixed(py(y)) << "\" x2=\"" << right << "\" y2=\""
-        << fixed(py(y)) << "\" stroke=\"#e3e7ee\"/>";
-    svg << "<text x=\"" << left - 6 << "\" y=\"" << fixed(py(y) + 4) << "\" text-anchor=\"end\">"
-        << label << "</text>\n";
-  }
-  svg << "</g>\n";
-  svg << "<text x=\"" << (left + right) / 2 << "\" y=\"" << axis_bottom + 36
-      << "\" text-anchor=\"middle\">speed |w|</text>\n";
-  svg << "<text transform=\"translate(16 " << (top + plot_bottom) / 2
-      << ") rotate(-90)\" text-anchor=\"middle\">h_max</text>\n";
+  write_background(svg, axes);
+  write_grid(svg, axes, log_ticks(*x_low, *x_high), log_ticks(*y_low, *y_high), "\n");
+  write_axis_titles(svg, axes, "speed |w|", "h_max");
   // The zero band: h_max = 0 (no step works at that speed) has no logarithm.
   if (any_zero)
     svg << "<g data-zero-band=\"1\"><title>h_max = 0 (no step h &gt; 0 works at that speed) has "

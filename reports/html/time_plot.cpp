@@ -66,33 +66,21 @@ std::string render_time_plot(const json& claim, const std::string& key) {
   *y_high += pad;
   const double width = 640, left = 72, right = width - 24, top = 14, plot_bottom = 214;
   const double height = plot_bottom + 50;
-  auto px = [&](double t) { return left + t / *t_high * (right - left); };
-  auto py = [&](double y) {
-    return plot_bottom - (y - *y_low) / (*y_high - *y_low) * (plot_bottom - top);
-  };
+  // t on a linear axis from 0, the error on a log axis.
+  const PlotAxes axes{left, right, top, plot_bottom, plot_bottom, 0, *t_high, *y_low, *y_high};
+  auto px = [&](double t) { return axes.px(t); };
+  auto py = [&](double y) { return axes.py(y); };
   std::ostringstream svg;
   svg << "<svg class=\"plot time\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width
       << "\" height=\"" << fixed(height) << "\" viewBox=\"0 0 " << width << " " << fixed(height)
       << "\" data-claim-time-plot=\"" << escape(key)
       << "\" role=\"img\" aria-label=\"energy error against t for " << escape(key) << "\">\n";
   svg << "<title>" << escape(key) << ": " << quantity << " against t, one line per h</title>\n";
-  svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << right - left << "\" height=\""
-      << plot_bottom - top << "\" fill=\"#fbfcfe\" stroke=\"#c5ccd8\"/>\n<g class=\"tick\">\n";
-  for (int i = 0; i <= 4; ++i) {  // t axis: linear, 0 … T in quarters
-    const double t = *t_high * i / 4;
-    svg << "<line x1=\"" << fixed(px(t)) << "\" y1=\"" << top << "\" x2=\"" << fixed(px(t))
-        << "\" y2=\"" << plot_bottom << "\" stroke=\"#e3e7ee\"/><text x=\"" << fixed(px(t))
-        << "\" y=\"" << plot_bottom + 17 << "\" text-anchor=\"middle\">" << format_number(t, 3)
-        << "</text>\n";
-  }
-  for (const auto& [y, label] : log_ticks(*y_low, *y_high))
-    svg << "<line x1=\"" << left << "\" y1=\"" << fixed(py(y)) << "\" x2=\"" << right << "\" y2=\""
-        << fixed(py(y)) << "\" stroke=\"#e3e7ee\"/><text x=\"" << left - 6 << "\" y=\""
-        << fixed(py(y) + 4) << "\" text-anchor=\"end\">" << label << "</text>\n";
-  svg << "</g>\n<text x=\"" << (left + right) / 2 << "\" y=\"" << plot_bottom + 36
-      << "\" text-anchor=\"middle\">t</text>\n<text transform=\"translate(16 "
-      << (top + plot_bottom) / 2 << ") rotate(-90)\" text-anchor=\"middle\">" << quantity
-      << "</text>\n";
+  Ticks t_ticks;  // 0 … T in quarters
+  for (int i = 0; i <= 4; ++i) t_ticks.push_back({*t_high * i / 4, format_number(*t_high * i / 4, 3)});
+  write_background(svg, axes);
+  write_grid(svg, axes, t_ticks, log_ticks(*y_low, *y_high), "\n");
+  write_axis_titles(svg, axes, "t", quantity);
   std::ostringstream legend;
   legend << "<ul class=\"legend\" data-legend-for-time=\"" << escape(key) << "\">";
   for (std::size_t i = 0; i < lines.size(); ++i) {

@@ -97,15 +97,15 @@ std::string render_work_precision(const json& cases, const json& run, bool wall_
     *x_low -= px_pad, *x_high += px_pad, *y_low -= py_pad, *y_high += py_pad;
     const double width = 640, left = 72, right = width - 24, top = 14, bottom = 244,
                  height = bottom + 50;
-    auto px = [&](double x) { return left + (x - *x_low) / (*x_high - *x_low) * (right - left); };
-    auto py = [&](double y) { return bottom - (y - *y_low) / (*y_high - *y_low) * (bottom - top); };
+    const PlotAxes axes{left, right, top, bottom, bottom, *x_low, *x_high, *y_low, *y_high};
+    auto px = [&](double x) { return axes.px(x); };
+    auto py = [&](double y) { return axes.py(y); };
     out << "<figure class=\"work-precision\"><svg class=\"plot wp\" "
            "xmlns=\"http://www.w3.org/2000/svg\" width=\""
         << width << "\" height=\"" << height << "\" viewBox=\"0 0 " << width << " " << height
         << "\" data-work-precision=\"" << (wall_time ? "seconds-" : "evaluations-") << figure++
-        << "\" role=\"img\" aria-label=\"work-precision diagram\">\n"
-        << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << right - left
-        << "\" height=\"" << bottom - top << "\" fill=\"#fbfcfe\" stroke=\"#c5ccd8\"/>\n";
+        << "\" role=\"img\" aria-label=\"work-precision diagram\">\n";
+    write_background(out, axes);
     if (floor && *floor > *y_low)
       out << "<rect data-floor=\"1\" x=\"" << left << "\" y=\""
           << fixed(py(std::min(*floor, *y_high))) << "\" width=\"" << right - left << "\" height=\""
@@ -113,22 +113,11 @@ std::string render_work_precision(const json& cases, const json& run, bool wall_
           << "\" fill=\"#e9ecf2\"><title>below the floor: errors here cannot be told from rounding "
              "or the "
              "reference's own error</title></rect>\n";
-    out << "<g class=\"tick\">";
-    for (const auto& [x, label] : log_ticks(*x_low, *x_high))
-      out << "<line x1=\"" << fixed(px(x)) << "\" y1=\"" << top << "\" x2=\"" << fixed(px(x))
-          << "\" y2=\"" << bottom << "\" stroke=\"#e3e7ee\"/><text x=\"" << fixed(px(x))
-          << "\" y=\"" << bottom + 17 << "\" text-anchor=\"middle\">" << label << "</text>";
-    for (const auto& [y, label] : log_ticks(*y_low, *y_high))
-      out << "<line x1=\"" << left << "\" y1=\"" << fixed(py(y)) << "\" x2=\"" << right
-          << "\" y2=\"" << fixed(py(y)) << "\" stroke=\"#e3e7ee\"/><text x=\"" << left - 6
-          << "\" y=\"" << fixed(py(y) + 4) << "\" text-anchor=\"end\">" << label << "</text>";
-    out << "</g>\n<text x=\"" << (left + right) / 2 << "\" y=\"" << bottom + 36
-        << "\" text-anchor=\"middle\">"
-        << (wall_time ? "wall time of the run, s (this machine)"
-                      : "evaluations of L (the run's cost, counted)")
-        << "</text>\n<text "
-           "transform=\"translate(16 "
-        << (top + bottom) / 2 << ") rotate(-90)\" text-anchor=\"middle\">|q_N − q(T)|</text>\n";
+    write_grid(out, axes, log_ticks(*x_low, *x_high), log_ticks(*y_low, *y_high), "");
+    write_axis_titles(out, axes,
+                      wall_time ? "wall time of the run, s (this machine)"
+                                : "evaluations of L (the run's cost, counted)",
+                      "|q_N − q(T)|");
     std::ostringstream legend;
     legend << "<ul class=\"legend\">";
     for (std::size_t i = 0; i < lines.size(); ++i) {
