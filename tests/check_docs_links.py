@@ -18,6 +18,8 @@ import re
 import sys
 import tempfile
 
+import tree_check
+
 TOP = "core|references|cases|harness|reports|tests|bench|examples|docs|python"
 PATH = re.compile(rf"(?<![\w./-])((?:{TOP})/[\w./-]*\w/?)")
 LINK = re.compile(r"\[[^\]\n]*\]\(([^)#\s,]+)(?:#[^)\s]*)?\)")
@@ -68,27 +70,15 @@ def self_test():
         (root / "README.md").write_text("See core/qxq/galerkin.hpp and [the theory](../../theory.md).\n")
         (root / "docs" / "a.md").write_text("The rule is in `core/galerkin.hpp`; its negatives are "
                                             "tests/negative/weight-off-….\n```\nrun(cases/mine.json)\n```\n")
-        found = problems_in(root)
-        expected = ["README.md: ../../theory.md leaves the repository",
-                    "docs/a.md: core/galerkin.hpp does not exist"]
-        if sorted(found) != expected:
-            print(f"self-test: expected {expected}, found {found}", file=sys.stderr)
-            return 1
-    print("self-test: a moved file and a link out of the repository are caught; a family prefix and "
-          "a user's file in a code block are not")
-    return 0
+        return tree_check.self_test_outcome(
+            problems_in(root),
+            ["README.md: ../../theory.md leaves the repository", "docs/a.md: core/galerkin.hpp does not exist"],
+            "a moved file and a link out of the repository are caught; a family prefix and a user's "
+            "file in a code block are not")
 
 
 def main(argv):
-    if argv[1:] == ["--self-test"]:
-        return self_test()
-    if len(argv) != 2:
-        print(__doc__, file=sys.stderr)
-        return 2
-    problems = problems_in(pathlib.Path(argv[1]).resolve())
-    for problem in problems:
-        print(problem)
-    return 1 if problems else 0
+    return tree_check.run(argv, __doc__, problems_in, self_test)
 
 
 if __name__ == "__main__":

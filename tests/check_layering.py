@@ -22,6 +22,8 @@ import re
 import sys
 import tempfile
 
+import tree_check
+
 CORE = ["core/platform", "core/numerics", "core/autodiff", "core/lagrangian"]
 CORE_ALL = CORE + ["core/qxq", "core/tq", "core/maps", "core/structure", "core/formulas"]
 BELOW_HARNESS = CORE_ALL + ["cases", "references", "reports"]
@@ -106,26 +108,14 @@ def self_test():
             "reports/report.hpp includes harness/command_line/run.hpp: reports/ may not include from "
             "harness/command_line/",
         ]
-        if sorted(found) != expected:
-            print("self-test: the planted upward includes were not reported as expected:", file=sys.stderr)
-            for line in found:
-                print(f"  {line}", file=sys.stderr)
-            return 1
-    print("self-test: upward includes (core/numerics into core/autodiff, reports/ and a claim into the "
-          "command line, the protocol into reports/) and a folder without a row are caught")
-    return 0
+        return tree_check.self_test_outcome(
+            found, expected,
+            "upward includes (core/numerics into core/autodiff, reports/ and a claim into the command "
+            "line, the protocol into reports/) and a folder without a row are caught")
 
 
 def main(argv):
-    if argv[1:] == ["--self-test"]:
-        return self_test()
-    if len(argv) != 2:
-        print(__doc__, file=sys.stderr)
-        return 2
-    found = violations(pathlib.Path(argv[1]).resolve())
-    for line in found:
-        print(line, file=sys.stderr)
-    return 1 if found else 0
+    return tree_check.run(argv, __doc__, violations, self_test)
 
 
 if __name__ == "__main__":
