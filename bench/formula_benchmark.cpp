@@ -112,12 +112,6 @@ int main(int argc, char** argv) {
                       {"target", target},
                       {"within_target", ratio <= target}});
     }
-  // The last line: one JSON object, comparable across machines (every figure a ratio).
-  std::printf("%s\n", nlohmann::json{{"benchmark", "formula / compiled"},
-                                     {"bits", vivv::precision_bits<mpfr_real>()},
-                                     {"repetitions", vivv::benchmark_repetitions},
-                                     {"rows", rows}}
-                          .dump()
-                          .c_str());
+  vivv::print_ratio_summary("formula / compiled", vivv::precision_bits<mpfr_real>(), rows);
   return 0;
 }

@@ -8,9 +8,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <map>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 namespace vivv {
 
@@ -65,6 +68,17 @@ void time_in_alternation(benchmark::State& state, const Base& base, const Other&
   }
   state.counters["ratio"] = std::chrono::duration<double>(other_time).count() /
                             std::chrono::duration<double>(base_time).count();
+}
+
+// The last line a ratio benchmark prints: one JSON object, comparable across machines (every
+// figure a ratio), with the precision and the repetitions it was measured at.
+inline void print_ratio_summary(const std::string& benchmark, int bits, const nlohmann::json& rows) {
+  std::printf("%s\n", nlohmann::json{{"benchmark", benchmark},
+                                     {"bits", bits},
+                                     {"repetitions", benchmark_repetitions},
+                                     {"rows", rows}}
+                          .dump()
+                          .c_str());
 }
 
 }  // namespace vivv

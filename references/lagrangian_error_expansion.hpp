@@ -43,8 +43,7 @@ std::vector<T> difference_coefficients(const PowerSeries<T>& discrete, const Pow
 // (q0, w0) (Taylor-mode AD of the system's L, core/lagrangian/taylor_curve.hpp).
 template <LagrangianSystem System>
 Point<PowerSeries<typename System::Scalar>, System::dimension> solution_series(
-    const System& system, const Vector<typename System::Scalar, System::dimension>& q0,
-    const Vector<typename System::Scalar, System::dimension>& w0, int length) {
+    const System& system, const VectorOf<System>& q0, const VectorOf<System>& w0, int length) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
   const Tape<T> tape = euler_lagrange_tape(system);
@@ -70,8 +69,7 @@ Point<PowerSeries<typename System::Scalar>, System::dimension> solution_series(
 template <LagrangianSystem System>
 std::vector<typename System::Scalar> expression_error_expansion(
     const System& system, const QxQDiscretization<typename System::Scalar>& d,
-    const Vector<typename System::Scalar, System::dimension>& q0,
-    const Vector<typename System::Scalar, System::dimension>& w0, int terms,
+    const VectorOf<System>& q0, const VectorOf<System>& w0, int terms,
     std::vector<typename System::Scalar>* sizes = nullptr) {
   using T = typename System::Scalar;
   using P = PowerSeries<T>;
@@ -109,8 +107,7 @@ std::vector<typename System::Scalar> expression_error_expansion(
 template <LagrangianSystem System>
 std::vector<typename System::Scalar> lagrangian_error_expansion(
     const System& system, const QxQDiscretization<typename System::Scalar>& d,
-    const Vector<typename System::Scalar, System::dimension>& q0,
-    const Vector<typename System::Scalar, System::dimension>& w0, int terms,
+    const VectorOf<System>& q0, const VectorOf<System>& w0, int terms,
     std::vector<typename System::Scalar>* sizes = nullptr) {
   using T = typename System::Scalar;
   using P = PowerSeries<T>;

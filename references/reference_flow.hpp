@@ -144,9 +144,9 @@ class ReferenceFlow {
       return ClosedFormFlow<System>::method();
     } else {
       std::string text =
-          "Gragg–Bulirsch–Stoer extrapolation, tol " + short_decimal(effective_tolerance_);
+          "Gragg–Bulirsch–Stoer extrapolation, tol " + three_digits(effective_tolerance_);
       if (effective_tolerance_ > requested_tolerance_) {
-        text += " (requested " + short_decimal(requested_tolerance_) +
+        text += " (requested " + three_digits(requested_tolerance_) +
                 ", below the floor of 10⁸ ulps of " + scalar_name<T>() + ")";
       }
       return text;
@@ -155,7 +155,7 @@ class ReferenceFlow {
 
   // How tolerance() is backed up.
   std::string cross_check() const {
-    const std::string check = short_decimal(check_local_tolerance());
+    const std::string check = three_digits(check_local_tolerance());
     if constexpr (closed_form) {
       const std::string independent = "the Taylor-series flow (Jorba–Zou steps)";
       return "closed form in " + scalar_name<T>() + " (" + std::to_string(precision_bits<T>()) +
@@ -208,12 +208,6 @@ class ReferenceFlow {
     } else {
       return max(tighter(local_tolerance_for(effective_tolerance_)), check_floor());
     }
-  }
-
-  static std::string short_decimal(const T& x) {
-    std::ostringstream out;
-    out << std::setprecision(3) << x;
-    return out.str();
   }
 
   System system_;

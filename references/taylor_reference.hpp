@@ -103,10 +103,10 @@ class TaylorReference {
   std::string method() const {
     std::string text = "Taylor series of the Euler–Lagrange field by Taylor-mode AD, order " +
                        std::to_string(order()) + " (Jorba–Zou steps, step tolerance " +
-                       short_decimal(step_tolerance()) + "), tol " +
-                       short_decimal(effective_tolerance_);
+                       three_digits(step_tolerance()) + "), tol " +
+                       three_digits(effective_tolerance_);
     if (effective_tolerance_ > requested_tolerance_)
-      text += " (requested " + short_decimal(requested_tolerance_) + ", below the floor of 10⁴ ulps of " +
+      text += " (requested " + three_digits(requested_tolerance_) + ", below the floor of 10⁴ ulps of " +
               scalar_name<T>() + ")";
     return text;
   }
@@ -117,7 +117,7 @@ class TaylorReference {
            "pendulum) in quad and at 200 and 400 bits, run it forward and back, against a run at "
            "+64 bits and tol·1e-20, and check energy conservation for every catalogue system; "
            "estimate_error(v, t) reruns the Taylor flow at step tolerance " +
-           short_decimal(check_step_tolerance()) +
+           three_digits(check_step_tolerance()) +
            " (order " + std::to_string(taylor_order_for(check_step_tolerance())) +
            ") and reports the max-norm difference";
   }
@@ -175,12 +175,6 @@ class TaylorReference {
     using std::max;
     using std::pow;
     return max(T(step_tolerance() / pow(T(10), 10)), T(10 * epsilon<T>()));
-  }
-
-  static std::string short_decimal(const T& x) {
-    std::ostringstream out;
-    out << std::setprecision(3) << x;
-    return out.str();
   }
 
   System system_;

@@ -77,9 +77,5 @@ def self_test():
             "file in a code block are not")
 
 
-def main(argv):
-    return tree_check.run(argv, __doc__, problems_in, self_test)
-
-
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    sys.exit(tree_check.run(sys.argv, __doc__, problems_in, self_test))

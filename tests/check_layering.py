@@ -114,9 +114,5 @@ def self_test():
             "line, the protocol into reports/) and a folder without a row are caught")
 
 
-def main(argv):
-    return tree_check.run(argv, __doc__, violations, self_test)
-
-
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    sys.exit(tree_check.run(sys.argv, __doc__, violations, self_test))

@@ -52,6 +52,11 @@ concept LagrangianSystem = requires(const System& system,
   { system.lagrangian(jet_x, jet_x) };
 };
 
+// A vector in a system's scalar and dimension — a configuration, a velocity or a momentum — as
+// the solvers take it; in signatures, `const VectorOf<System>& q`.
+template <class System>
+using VectorOf = Vector<typename System::Scalar, System::dimension>;
+
 // Thrown when d²L/dw² is singular at a state the computation visits.
 struct SingularLagrangianError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -70,8 +75,7 @@ struct LagrangianDerivatives {
 // dL/dq, dL/dw, d²L/dw², d²L/dw dq at (q, w) by automatic differentiation.
 template <LagrangianSystem System>
 auto lagrangian_derivatives(const System& system,
-                            const Vector<typename System::Scalar, System::dimension>& q,
-                            const Vector<typename System::Scalar, System::dimension>& w) {
+                            const VectorOf<System>& q, const VectorOf<System>& w) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
   using J = Jet<T, 2 * n>;
@@ -100,8 +104,7 @@ auto lagrangian_derivatives(const System& system,
 // gives the same numbers bit for bit: a jet's w-entries are never computed from its q-entries.
 template <int Order, LagrangianSystem System>
 auto lagrangian_in_velocity(const System& system,
-                            const Vector<typename System::Scalar, System::dimension>& q,
-                            const Vector<typename System::Scalar, System::dimension>& w) {
+                            const VectorOf<System>& q, const VectorOf<System>& w) {
   using J = Jet<typename System::Scalar, System::dimension, Order>;
   Point<J, System::dimension> jet_q, jet_w;
   for (int i = 0; i < System::dimension; ++i) {
@@ -113,18 +116,18 @@ auto lagrangian_in_velocity(const System& system,
 
 // Momentum p = FL(q, w) = dL/dw.
 template <LagrangianSystem System>
-auto momentum(const System& system, const Vector<typename System::Scalar, System::dimension>& q,
-              const Vector<typename System::Scalar, System::dimension>& w) {
+auto momentum(const System& system, const VectorOf<System>& q,
+              const VectorOf<System>& w) {
   const auto L = lagrangian_in_velocity<1>(system, q, w);
-  Vector<typename System::Scalar, System::dimension> p;
+  VectorOf<System> p;
   for (int i = 0; i < System::dimension; ++i) p[i] = L.gradient[i];
   return p;
 }
 
 // Energy E = dL/dw · w − L.
 template <LagrangianSystem System>
-auto energy(const System& system, const Vector<typename System::Scalar, System::dimension>& q,
-            const Vector<typename System::Scalar, System::dimension>& w) {
+auto energy(const System& system, const VectorOf<System>& q,
+            const VectorOf<System>& w) {
   using T = typename System::Scalar;
   const auto L = lagrangian_in_velocity<1>(system, q, w);
   T energy = -L.value;
@@ -136,8 +139,7 @@ auto energy(const System& system, const Vector<typename System::Scalar, System::
 // A singular (or numerically singular) mass matrix is an error naming the state.
 template <LagrangianSystem System>
 auto euler_lagrange_acceleration(const System& system,
-                                 const Vector<typename System::Scalar, System::dimension>& q,
-                                 const Vector<typename System::Scalar, System::dimension>& w) {
+                                 const VectorOf<System>& q, const VectorOf<System>& w) {
   using T = typename System::Scalar;
   using std::abs;
   using std::isfinite;

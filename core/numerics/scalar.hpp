@@ -130,6 +130,15 @@ std::string to_decimal(const T& x, int digits) {
   return out.str();
 }
 
+// Writes x with three significant digits in the stream's shortest form ("1e-12", "0.00123"): a
+// tolerance in a reference's description.
+template <class T>
+std::string three_digits(const T& x) {
+  std::ostringstream out;
+  out << std::setprecision(3) << x;
+  return out.str();
+}
+
 template <class T, int n>
 using Vector = Eigen::Matrix<T, n, 1>;
 template <class T, int rows, int cols>

@@ -39,8 +39,7 @@ struct DelTrajectory {
 // by Newton from the linear extrapolation 2 q_k − q_{k−1}.
 template <LagrangianSystem System>
 auto del_step(const System& system, const DelScheme<typename System::Scalar>& scheme,
-              const Vector<typename System::Scalar, System::dimension>& q_previous,
-              const Vector<typename System::Scalar, System::dimension>& q_current,
+              const VectorOf<System>& q_previous, const VectorOf<System>& q_current,
               const typename System::Scalar& h) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
@@ -64,8 +63,7 @@ auto del_step(const System& system, const DelScheme<typename System::Scalar>& sc
 // is called after each step (the harness throttles it into progress lines).
 template <LagrangianSystem System>
 auto del_trajectory(const System& system, const DelScheme<typename System::Scalar>& scheme,
-                    const Vector<typename System::Scalar, System::dimension>& q0,
-                    const Vector<typename System::Scalar, System::dimension>& q1,
+                    const VectorOf<System>& q0, const VectorOf<System>& q1,
                     const typename System::Scalar& h, int steps,
                     const std::function<void(int, int)>& after_step = {}) {
   using T = typename System::Scalar;
@@ -94,8 +92,7 @@ auto del_trajectory(const System& system, const DelScheme<typename System::Scala
 // by Newton from q_0 + h·w_0.
 template <LagrangianSystem System>
 auto start_from_momentum(const System& system, const QxQDiscretization<typename System::Scalar>& future,
-                         const Vector<typename System::Scalar, System::dimension>& q0,
-                         const Vector<typename System::Scalar, System::dimension>& w0,
+                         const VectorOf<System>& q0, const VectorOf<System>& w0,
                          const typename System::Scalar& h) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;

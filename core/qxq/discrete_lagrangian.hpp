@@ -195,8 +195,7 @@ S discrete_lagrangian(const System& system,
 template <int Order, int Split = 0, LagrangianSystem System>
 auto discrete_lagrangian_jet(const System& system,
                              const QxQDiscretization<typename System::Scalar>& discretization,
-                             const Vector<typename System::Scalar, System::dimension>& q_b,
-                             const Vector<typename System::Scalar, System::dimension>& q_e,
+                             const VectorOf<System>& q_b, const VectorOf<System>& q_e,
                              const typename System::Scalar& h) {
   constexpr int n = System::dimension;
   using J = Jet<typename System::Scalar, 2 * n, Order, Split>;
@@ -211,8 +210,7 @@ auto discrete_lagrangian_jet(const System& system,
 template <LagrangianSystem System>
 auto discrete_legendre(const System& system,
                        const QxQDiscretization<typename System::Scalar>& discretization,
-                       const Vector<typename System::Scalar, System::dimension>& q_b,
-                       const Vector<typename System::Scalar, System::dimension>& q_e,
+                       const VectorOf<System>& q_b, const VectorOf<System>& q_e,
                        const typename System::Scalar& h) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
@@ -260,8 +258,7 @@ struct BeginMomentum {
 template <LagrangianSystem System>
 auto begin_momentum(const System& system,
                     const QxQDiscretization<typename System::Scalar>& discretization,
-                    const Vector<typename System::Scalar, System::dimension>& q_b,
-                    const Vector<typename System::Scalar, System::dimension>& q_e,
+                    const VectorOf<System>& q_b, const VectorOf<System>& q_e,
                     const typename System::Scalar& h) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
@@ -292,8 +289,7 @@ struct DiscreteMomenta {
 template <LagrangianSystem System>
 auto discrete_momenta(const System& system,
                       const QxQDiscretization<typename System::Scalar>& discretization,
-                      const Vector<typename System::Scalar, System::dimension>& q_b,
-                      const Vector<typename System::Scalar, System::dimension>& q_e,
+                      const VectorOf<System>& q_b, const VectorOf<System>& q_e,
                       const typename System::Scalar& h) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
@@ -315,8 +311,7 @@ auto discrete_momenta(const System& system,
 // p_begin(q_b, q_e) = −∂L_d/∂q_b (paper: F−L_h).
 template <LagrangianSystem System>
 auto p_begin(const System& system, const QxQDiscretization<typename System::Scalar>& discretization,
-             const Vector<typename System::Scalar, System::dimension>& q_b,
-             const Vector<typename System::Scalar, System::dimension>& q_e,
+             const VectorOf<System>& q_b, const VectorOf<System>& q_e,
              const typename System::Scalar& h) {
   return discrete_momenta(system, discretization, q_b, q_e, h).p_begin;
 }
@@ -324,8 +319,7 @@ auto p_begin(const System& system, const QxQDiscretization<typename System::Scal
 // p_end(q_b, q_e) = +∂L_d/∂q_e (paper: F+L_h).
 template <LagrangianSystem System>
 auto p_end(const System& system, const QxQDiscretization<typename System::Scalar>& discretization,
-           const Vector<typename System::Scalar, System::dimension>& q_b,
-           const Vector<typename System::Scalar, System::dimension>& q_e,
+           const VectorOf<System>& q_b, const VectorOf<System>& q_e,
            const typename System::Scalar& h) {
   return discrete_momenta(system, discretization, q_b, q_e, h).p_end;
 }

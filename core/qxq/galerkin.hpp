@@ -91,8 +91,8 @@ struct LagrangianHessian {
 };
 
 template <LagrangianSystem System>
-auto lagrangian_hessian(const System& system, const Vector<typename System::Scalar, System::dimension>& x,
-                        const Vector<typename System::Scalar, System::dimension>& v) {
+auto lagrangian_hessian(const System& system, const VectorOf<System>& x,
+                        const VectorOf<System>& v) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
   using J = Jet<T, 2 * n>;
@@ -129,8 +129,7 @@ struct GalerkinAction {
 template <LagrangianSystem System>
 GalerkinAction<typename System::Scalar> galerkin_action(
     const System& system, const GalerkinRule<typename System::Scalar>& rule,
-    const std::vector<Vector<typename System::Scalar, System::dimension>>& C,
-    const typename System::Scalar& h, int first, int last) {
+    const std::vector<VectorOf<System>>& C, const typename System::Scalar& h, int first, int last) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
   const int s = rule.spec.degree, blocks = last - first + 1;
@@ -216,8 +215,7 @@ GalerkinAction<typename System::Scalar> galerkin_action(
 template <LagrangianSystem System>
 DiscreteLegendre<typename System::Scalar, System::dimension> galerkin_legendre(
     const System& system, const GalerkinRule<typename System::Scalar>& rule,
-    const Vector<typename System::Scalar, System::dimension>& q_b,
-    const Vector<typename System::Scalar, System::dimension>& q_e, const typename System::Scalar& h) {
+    const VectorOf<System>& q_b, const VectorOf<System>& q_e, const typename System::Scalar& h) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
   using std::abs;

@@ -15,9 +15,9 @@ namespace vivv {
 
 // The w with ∂L/∂w(q, w) = p, by Newton from `guess`; an error if it does not converge.
 template <LagrangianSystem System>
-auto velocity_for_momentum(const System& system, const Vector<typename System::Scalar, System::dimension>& q,
-                           const Vector<typename System::Scalar, System::dimension>& p,
-                           Vector<typename System::Scalar, System::dimension> guess) {
+auto velocity_for_momentum(const System& system, const VectorOf<System>& q,
+                           const VectorOf<System>& p,
+                           VectorOf<System> guess) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
   auto report = newton_solve<T, n>(

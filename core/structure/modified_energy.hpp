@@ -42,7 +42,7 @@ struct PotentialDerivatives {
 };
 
 template <LagrangianSystem System>
-auto potential_derivatives(const System& system, const Vector<typename System::Scalar, System::dimension>& q) {
+auto potential_derivatives(const System& system, const VectorOf<System>& q) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
   using J = Jet<T, n>;
@@ -79,8 +79,8 @@ struct ModifiedEnergy {
 
 template <LagrangianSystem System>
 auto modified_energy(const System& system, const ModifiedEnergyForm& form,
-                     const Vector<typename System::Scalar, System::dimension>& q,
-                     const Vector<typename System::Scalar, System::dimension>& p, const typename System::Scalar& h) {
+                     const VectorOf<System>& q,
+                     const VectorOf<System>& p, const typename System::Scalar& h) {
   using T = typename System::Scalar;
   const auto U = potential_derivatives(system, q);
   const T H = p.squaredNorm() / 2 + U.value;

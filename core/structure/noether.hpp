@@ -33,8 +33,8 @@ bool has_symmetry(const System& system) {
 
 // ξ(q), the symmetry's generator at q (DeclaresSymmetry systems only).
 template <LagrangianSystem System>
-Vector<typename System::Scalar, System::dimension> symmetry_generator(
-    const System& system, const Vector<typename System::Scalar, System::dimension>& q) {
+VectorOf<System> symmetry_generator(
+    const System& system, const VectorOf<System>& q) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
   return as_vector<T, n>(system.symmetry_generator(as_point<T, n>(q)));
@@ -42,8 +42,8 @@ Vector<typename System::Scalar, System::dimension> symmetry_generator(
 
 // J = p · ξ(q), the momentum map of the symmetry at (q, p).
 template <LagrangianSystem System>
-typename System::Scalar momentum_map(const System& system, const Vector<typename System::Scalar, System::dimension>& q,
-                                     const Vector<typename System::Scalar, System::dimension>& p) {
+typename System::Scalar momentum_map(const System& system, const VectorOf<System>& q,
+                                     const VectorOf<System>& p) {
   return p.dot(symmetry_generator(system, q));
 }
 

@@ -183,8 +183,8 @@ template <LagrangianSystem System>
 TQCriticalPair<typename System::Scalar, System::dimension> tq_critical_pair(
     const System& system, const TQDiscretization<typename System::Scalar>& past,
     const TQDiscretization<typename System::Scalar>& future,
-    const Vector<typename System::Scalar, System::dimension>& q_minus,
-    const Vector<typename System::Scalar, System::dimension>& q_plus, const typename System::Scalar& h,
+    const VectorOf<System>& q_minus,
+    const VectorOf<System>& q_plus, const typename System::Scalar& h,
     const NewtonOptions& options = {}) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;

@@ -3,10 +3,12 @@
 //
 // A claim is a type deriving from Claim<itself> with
 //   static constexpr const char* id, source, prediction;
-//   template <LagrangianSystem System> static ClaimResult evaluate(const CaseContext<System>&);
-// and, if it predicts an order, theorem_order(context) returning it (the
-// default predicts none: an identity, exactness or an inconsistency). It is
-// listed once in harness/claims/registry.hpp.
+//   template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+//   static void measure(const CaseContext<System>&, ClaimResult& claim);
+// which adds its series and evidence to the claim (result() made it, with the id, source and
+// prediction) and concludes it; and, if it predicts an order, theorem_order(context) returning it
+// (the default predicts none: an identity, exactness or an inconsistency). It is listed once in
+// harness/claims/registry.hpp, which calls evaluate(context).
 #pragma once
 
 #include <optional>
@@ -32,6 +34,14 @@ struct Claim {
 
   // An empty result carrying the claim's id, source and prediction.
   static ClaimResult result() { return claim_result_for(Derived::id, Derived::source, Derived::prediction); }
+
+  // The claim's result on the case: its id, source and prediction, and what measure() found.
+  template <LagrangianSystem System>
+  static ClaimResult evaluate(const CaseContext<System>& context) {
+    ClaimResult claim = result();
+    Derived::measure(context, claim);
+    return claim;
+  }
 
   // The prediction for the claim's main series: the theorem's order, or the
   // exact order the case declares for this claim.

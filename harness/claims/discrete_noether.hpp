@@ -36,13 +36,10 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
   static constexpr int resolved = 2;
   static constexpr int rounding_band = 1024;
 
-  template <LagrangianSystem System>
-  static ClaimResult evaluate(const CaseContext<System>& context) {
-    using T = typename System::Scalar;
-    constexpr int n = System::dimension;
+  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     using std::abs;
     using std::max;
-    ClaimResult claim = result();
     if constexpr (!DeclaresSymmetry<System>) {
       throw std::invalid_argument("discrete-noether: the system declares no symmetry");
     } else {
@@ -133,15 +130,14 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
                            "the discrete momentum map drifts beyond rounding: " + breaks +
                                " (the drift and its rounding units at each h are in the per-step evidence)");
     }
-    return claim;
   }
 
  private:
   // The size of the terms that p = ∂L/∂w is a sum of, at (q, w): |p|, |M·w| and |∂L/∂w − M·w|.
   template <LagrangianSystem System>
   static typename System::Scalar momentum_terms(const CaseContext<System>& context,
-                                                const Vector<typename System::Scalar, System::dimension>& q,
-                                                const Vector<typename System::Scalar, System::dimension>& w) {
+                                                const VectorOf<System>& q,
+                                                const VectorOf<System>& w) {
     using T = typename System::Scalar;
     constexpr int n = System::dimension;
     using std::max;
@@ -199,8 +195,7 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
   // where.
   template <LagrangianSystem System>
   static void require_finite(const CaseContext<System>& context,
-                             const Vector<typename System::Scalar, System::dimension>& xi,
-                             const Vector<typename System::Scalar, System::dimension>& q,
+                             const VectorOf<System>& xi, const VectorOf<System>& q,
                              const std::string& where) {
     using std::isfinite;
     for (int i = 0; i < System::dimension; ++i)

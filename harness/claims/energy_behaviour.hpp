@@ -424,13 +424,10 @@ struct EnergyBehaviourClaim : Claim<EnergyBehaviourClaim> {
       "shows no linear trend above its scatter that falls with h like the energy error itself; "
       "and its size max_k |E_k − E_0| falls at least like h^r (or is at the rounding level)";
 
-  template <LagrangianSystem System>
-  static ClaimResult evaluate(const CaseContext<System>& context) {
-    using T = typename System::Scalar;
-    constexpr int n = System::dimension;
+  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     using std::abs;
     using std::max;
-    ClaimResult claim = result();
     std::vector<EnergyDrift<T>> runs;
     std::vector<T> largest_error;
     nlohmann::json against_t = nlohmann::json::array();
@@ -494,7 +491,6 @@ struct EnergyBehaviourClaim : Claim<EnergyBehaviourClaim> {
         "ρ = N × 16 ulps × max(|E_0|, |p·w|) at every h: an energy error that does not converge "
         "fails, whatever its drift";
     conclude(claim);
-    return claim;
   }
 };
 

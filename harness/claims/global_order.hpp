@@ -159,11 +159,10 @@ void visit_trajectories(const CaseContext<System>& context, const std::string& w
 // that read them (energy-behaviour, modified-energy, discrete-noether); a trajectory that is not
 // the sweep's kept one gets its own.
 template <LagrangianSystem System>
-std::shared_ptr<const std::vector<Vector<typename System::Scalar, System::dimension>>>
+std::shared_ptr<const std::vector<VectorOf<System>>>
 trajectory_momenta(const CaseContext<System>& context,
-                   const std::vector<Vector<typename System::Scalar, System::dimension>>& q,
-                   const typename System::Scalar& h) {
-  using Momenta = std::vector<Vector<typename System::Scalar, System::dimension>>;
+                   const std::vector<VectorOf<System>>& q, const typename System::Scalar& h) {
+  using Momenta = std::vector<VectorOf<System>>;
   const int N = static_cast<int>(q.size()) - 1;
   const auto kept_run = context.del_runs.find(N);
   const bool kept = kept_run != context.del_runs.end() && &kept_run->second->q == &q;
@@ -226,11 +225,8 @@ struct GlobalOrderClaim : Claim<GlobalOrderClaim> {
     return context.map_order();
   }
 
-  template <LagrangianSystem System>
-  static ClaimResult evaluate(const CaseContext<System>& context) {
-    using T = typename System::Scalar;
-    constexpr int n = System::dimension;
-    ClaimResult claim = result();
+  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     SweepRun<System> run = run_sweep(context, context.scheme);
     const State<T, n>& final_state = context.final_state;
     Vector<T, n> p_exact = momentum(context.system, final_state.q, final_state.w);
@@ -249,7 +245,6 @@ struct GlobalOrderClaim : Claim<GlobalOrderClaim> {
         context, context.tq || context.map ? "|FL(v_N) − p(T)|" : "|p_end(q_{N−1}, q_N) − p(T)|", p_error,
         std::nullopt));
     conclude(claim);
-    return claim;
   }
 };
 

@@ -197,11 +197,8 @@ struct LagrangianOrderClaim : Claim<LagrangianOrderClaim> {
     return context.lagrangian_order() + 1;
   }
 
-  template <LagrangianSystem System>
-  static ClaimResult evaluate(const CaseContext<System>& context) {
-    using T = typename System::Scalar;
-    constexpr int n = System::dimension;
-    ClaimResult claim = result();
+  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     // L_d^E(q(0), q(h); h) by Newton shooting on the Taylor flow and the action
     // by composite Gauss–Legendre (references/exact_discrete_lagrangian.hpp).
     // Shooting must recover the solution's own initial velocity: that mismatch
@@ -243,7 +240,6 @@ struct LagrangianOrderClaim : Claim<LagrangianOrderClaim> {
       add_exact_coefficients(claim, context, predicted(context).order - 1);
     }
     conclude(claim);
-    return claim;
   }
 };
 
@@ -265,11 +261,8 @@ struct LegendreOrderClaim : Claim<LegendreOrderClaim> {
     return context.lagrangian_order();
   }
 
-  template <LagrangianSystem System>
-  static ClaimResult evaluate(const CaseContext<System>& context) {
-    using T = typename System::Scalar;
-    constexpr int n = System::dimension;
-    ClaimResult claim = result();
+  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     Vector<T, n> p_start = momentum(context.system, context.initial.q, context.initial.w);
     std::vector<T> end_error, begin_error, difference;
     for (const T& h : context.steps()) {
@@ -306,7 +299,6 @@ struct LegendreOrderClaim : Claim<LegendreOrderClaim> {
                                " of the two transforms: this rule keeps the order "
                                "Marsden–West state (information; the paper's bound is r)";
     conclude(claim);
-    return claim;
   }
 };
 

@@ -38,16 +38,13 @@ struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
     return std::max(1, context.lagrangian_order() - (context.scheme.mismatched ? 1 : 0)) + 1;
   }
 
-  template <LagrangianSystem System>
-  static ClaimResult evaluate(const CaseContext<System>& context) {
-    using T = typename System::Scalar;
-    constexpr int n = System::dimension;
+  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     using std::max;
     if (context.tq)
       throw CaseError(context.spec.file, "claims",
                       "local-order measures one step of a map; on a discretization of TQ that is the "
                       "claim \"order\" (paper Thm 5.5): list \"order\" instead");
-    ClaimResult claim = result();
     const OrderPrediction prediction = predicted(context);
     const std::string map_words = map_name(context);
     // The step sizes: the case's sweep, then halvings below its finest step to the floor.
@@ -114,7 +111,6 @@ struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
                              "where fewer than 3 errors clear the floor; each from " + std::to_string(states) +
                              " states x(j·T/" + std::to_string(states) + ") of the reference orbit";
     conclude(claim);
-    return claim;
   }
 
  private:
@@ -129,7 +125,7 @@ struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
 
   // One step of the case's map from the state x at h, on (q, p).
   template <LagrangianSystem System>
-  static std::pair<Vector<typename System::Scalar, System::dimension>, Vector<typename System::Scalar, System::dimension>>
+  static std::pair<VectorOf<System>, VectorOf<System>>
   one_step(const CaseContext<System>& context, const State<typename System::Scalar, System::dimension>& x,
            const typename System::Scalar& h) {
     if (context.map) {

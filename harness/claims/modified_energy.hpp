@@ -32,10 +32,8 @@ struct ModifiedEnergyClaim : Claim<ModifiedEnergyClaim> {
     return 4;
   }
 
-  template <LagrangianSystem System>
-  static ClaimResult evaluate(const CaseContext<System>& context) {
-    using T = typename System::Scalar;
-    constexpr int n = System::dimension;
+  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     using std::abs;
     using std::max;
     // The form of L checked along the motion: the initial and final states, their mixtures and
@@ -56,7 +54,6 @@ struct ModifiedEnergyClaim : Claim<ModifiedEnergyClaim> {
                       "of that form "
                       "along the motion: " +
                           defect);
-    ClaimResult claim = result();
     const ModifiedEnergyForm form = modified_energy_form(context.scheme.future.rule);
     std::vector<T> modified_error, energy_error;
     std::vector<EnergyDrift<T>> drifts;
@@ -95,7 +92,6 @@ struct ModifiedEnergyClaim : Claim<ModifiedEnergyClaim> {
     claim.series.push_back(sweep_series(context, "max_k |H_k − H_0| (energy, O(h²): fitted, not judged)", energy_error,
                                         std::nullopt));
     conclude(claim);
-    return claim;
   }
 };
 

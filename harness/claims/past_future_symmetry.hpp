@@ -31,12 +31,9 @@ struct PastFutureSymmetryClaim : Claim<PastFutureSymmetryClaim> {
     return ContactOrderClaim::mutual_order(context);
   }
 
-  template <LagrangianSystem System>
-  static ClaimResult evaluate(const CaseContext<System>& context) {
-    using T = typename System::Scalar;
-    constexpr int n = System::dimension;
+  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     using std::max;
-    ClaimResult claim = result();
     const auto& first_future = *context.tq;
     const auto& first_past = context.tq_past ? *context.tq_past : first_future;
     const auto& second = *context.tq_compare;
@@ -71,7 +68,6 @@ struct PastFutureSymmetryClaim : Claim<PastFutureSymmetryClaim> {
     claim.series.push_back(sweep_series(context, "max(|Δw|, |Δw̃|)", difference, order,
                                         context.floors_without_reference()));
     conclude(claim);
-    return claim;
   }
 };
 

@@ -80,10 +80,8 @@ struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {
       {"float", 24}, {"double", 53}, {"long double (x87)", 64}, {"float128", 113}};
   static constexpr double format_window_bits = 8;
 
-  template <LagrangianSystem System>
-  static ClaimResult evaluate(const CaseContext<System>& context) {
-    using T = typename System::Scalar;
-    ClaimResult claim = result();
+  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     if constexpr (!is_mpfr_v<T>) {
       throw CaseError(context.spec.file, "claims", "precision-leak compares two MPFR precisions: it needs "
                                                    "\"scalar\": \"mpfr\"");
@@ -165,7 +163,6 @@ struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {
             "order local-order judges";
       }
     }
-    return claim;
   }
 
  private:

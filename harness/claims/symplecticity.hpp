@@ -34,11 +34,8 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
   // in double, a DEL whose two sides differ at O(h³).
   static constexpr int resolved = 4;
 
-  template <LagrangianSystem System>
-  static ClaimResult evaluate(const CaseContext<System>& context) {
-    using T = typename System::Scalar;
-    constexpr int n = System::dimension;
-    ClaimResult claim = result();
+  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     PerStepCheck<T> check;
     std::vector<T> units;  // the rounding unit of the judged (worst) step at each h
     std::vector<JacobianCheck> jacobian_checks;  // the judged step's Jacobian against its map
@@ -144,7 +141,6 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
                          "symplectic to working precision at every step and every h, and so is the N-step map",
                          "the (q, p) map is not symplectic (see per-step evidence)");
     conclude_jacobian_checks(claim, jacobian_checks);
-    return claim;
   }
 
   // The Jacobian of the judged step at one h against central differences of the step's map.

@@ -40,17 +40,14 @@ struct LocalOrderClaim : Claim<LocalOrderClaim> {
     return context.map_order() + 1;
   }
 
-  template <LagrangianSystem System>
-  static ClaimResult evaluate(const CaseContext<System>& context) {
-    using T = typename System::Scalar;
-    ClaimResult claim = result();
+  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     std::vector<T> error = measure_each_step(context, "order: local error", [&](const T& h) {
       return state_distance(tq_map(context, *context.tq, h), context.exact(h));
     });
     claim.evidence["evolution_order_r"] = context.map_order();
     claim.series.push_back(sweep_series(context, "|F_h(v) − F^exact_h(v)|", error, predicted(context)));
     conclude(claim);
-    return claim;
   }
 };
 
@@ -76,10 +73,8 @@ struct ContactOrderClaim : Claim<ContactOrderClaim> {
     return mutual_order(context) + 1;
   }
 
-  template <LagrangianSystem System>
-  static ClaimResult evaluate(const CaseContext<System>& context) {
-    using T = typename System::Scalar;
-    ClaimResult claim = result();
+  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     const int r = mutual_order(context);
     std::vector<T> difference = measure_each_step(context, "contact-order", [&](const T& h) {
       return state_distance(tq_map(context, *context.tq, h, context.tq_past ? &*context.tq_past : nullptr),
@@ -91,7 +86,6 @@ struct ContactOrderClaim : Claim<ContactOrderClaim> {
     claim.series.push_back(sweep_series(context, "|F²_h(v) − F¹_h(v)|", difference,
                                         predicted(context), context.floors_without_reference()));
     conclude(claim);
-    return claim;
   }
 };
 
@@ -103,12 +97,9 @@ struct QxQTQEquivalenceClaim : Claim<QxQTQEquivalenceClaim> {
       "Psi(v) = (d−(v), d+(v)), to working precision";
   static constexpr int compared_steps = 8;
 
-  template <LagrangianSystem System>
-  static ClaimResult evaluate(const CaseContext<System>& context) {
-    using T = typename System::Scalar;
-    constexpr int n = System::dimension;
+  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     using std::max;
-    ClaimResult claim = result();
     const auto& d = *context.tq;
     PerStepCheck<T> check;
     for (const T& h : context.steps()) {
@@ -134,7 +125,6 @@ struct QxQTQEquivalenceClaim : Claim<QxQTQEquivalenceClaim> {
     claim.evidence["mismatched_tq_steps"] = context.tq_past.has_value();
     check.conclude_claim(claim, context, "max_k |Psi(v_k) − (q_k, q_{k+1})|", "equal to working precision at every h",
                          "the TQ and Q×Q evolutions differ (see per-step evidence)");
-    return claim;
   }
 };
 
@@ -225,11 +215,8 @@ struct ExistenceUniquenessClaim : Claim<ExistenceUniquenessClaim> {
     return probe;
   }
 
-  template <LagrangianSystem System>
-  static ClaimResult evaluate(const CaseContext<System>& context) {
-    using T = typename System::Scalar;
-    constexpr int n = System::dimension;
-    ClaimResult claim = result();
+  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     // F_h(v) − v over the sweep: order at least 1; at each h the critical point is unique near
     // the diagonal. Here a failed solve is the measured outcome, not bad input.
     std::vector<T> displacement;
@@ -304,7 +291,6 @@ struct ExistenceUniquenessClaim : Claim<ExistenceUniquenessClaim> {
                             "at every speed";
     }
     conclude(claim);
-    return claim;
   }
 };
 

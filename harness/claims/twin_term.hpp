@@ -42,6 +42,19 @@ std::pair<T, T> legendre_shift_error(const Transform& with, const Transform& pla
   return {error, scale};
 }
 
+// One h's measurement from the two runs' gap and scale and the Legendre transforms with and
+// without the twin term, with the rounding allowances of Q×Q and TQ alike: the trajectories
+// 1024·N ulps of their size (N Newton solves, each converged to 64 ulps), the shift 64 ulps.
+template <class T, class Transform>
+TwinMeasurement<T> twin_measurement(int N, const T& h, const T& gap, const T& scale, const Transform& with,
+                                    const Transform& plain, const Transform& with_other,
+                                    const Transform& plain_other, const TwinTerm<T>& twin) {
+  using std::pow;
+  auto [shift_error, p_scale] = legendre_shift_error<T>(with, plain, with_other, plain_other, twin, h);
+  return {N, h, gap, 1024 * T(N) * epsilon<T>() * scale, T(twin.a[0] * pow(h, twin.power)), shift_error,
+          64 * epsilon<T>() * p_scale};
+}
+
 struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
   static constexpr const char* id = "twin-term-invariance";
   static constexpr const char* source = "paper §2.2–2.3";
@@ -49,10 +62,8 @@ struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
       "trajectories with the twin term a·h^s·(end − begin) and without it are identical to "
       "working precision; both Legendre transforms shift by exactly a·h^s";
 
-  template <LagrangianSystem System>
-  static ClaimResult evaluate(const CaseContext<System>& context) {
-    using T = typename System::Scalar;
-    ClaimResult claim = result();
+  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     PerStepCheck<T> check;
     // The trajectory difference is the measured value; the Legendre shift is checked beside it.
     for (const auto& m : context.tq ? measure_tq(context) : measure_qxq(context))
@@ -67,7 +78,6 @@ struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
                          "trajectories identical to working precision at every h",
                          "the twin term changed the trajectory or the Legendre shift is not a·h^s "
                          "(see per-step evidence)");
-    return claim;
   }
 
  private:
@@ -76,7 +86,7 @@ struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
   static std::vector<TwinMeasurement<typename System::Scalar>> measure_qxq(const CaseContext<System>& context) {
     using T = typename System::Scalar;
     constexpr int n = System::dimension;
-    using std::abs, std::max, std::pow;
+    using std::max;
     DelScheme<T> plain{without_twin(context.scheme.future), without_twin(context.scheme.past),
                        context.scheme.mismatched};
     SweepRun<System> with = run_sweep(context, context.scheme, true);
@@ -96,11 +106,8 @@ struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
       const auto& q = without.trajectories[i]->q;
       auto shifted = discrete_legendre(context.system, context.scheme.future, q[N - 1], q[N], h);
       auto plain_legendre = discrete_legendre(context.system, plain.future, q[N - 1], q[N], h);
-      auto [shift_error, p_scale] = legendre_shift_error<T>(shifted.p_begin, plain_legendre.p_begin, shifted.p_end,
-                                                            plain_legendre.p_end, twin, h);
-      // Rounding in N Newton solves, each converged to 64 ulps: allow 1024·N ulps.
-      measured.push_back({N, h, gap, 1024 * T(N) * epsilon<T>() * scale,
-                          T(twin.a[0] * pow(h, twin.power)), shift_error, 64 * epsilon<T>() * p_scale});
+      measured.push_back(twin_measurement(N, h, gap, scale, shifted.p_begin, plain_legendre.p_begin,
+                                          shifted.p_end, plain_legendre.p_end, twin));
     }
     return measured;
   }
@@ -112,7 +119,7 @@ struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
   static std::vector<TwinMeasurement<typename System::Scalar>> measure_tq(const CaseContext<System>& context) {
     using T = typename System::Scalar;
     constexpr int n = System::dimension;
-    using std::abs, std::max, std::pow;
+    using std::max;
     const TQDiscretization<T>& with = *context.tq;
     const TQDiscretization<T>& with_past = context.tq_past ? *context.tq_past : with;
     TQDiscretization<T> plain = with;
@@ -138,11 +145,8 @@ struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
       auto v = tangent_point(b[N]);
       auto shifted = tq_legendre(context.system, with, v, h);
       auto plain_legendre = tq_legendre(context.system, plain, v, h);
-      auto [shift_error, p_scale] = legendre_shift_error<T>(shifted.p_minus, plain_legendre.p_minus, shifted.p_plus,
-                                                            plain_legendre.p_plus, twin, h);
-      // The same rounding allowances as for Q×Q.
-      measured.push_back({N, h, gap, 1024 * T(N) * epsilon<T>() * scale,
-                          T(twin.a[0] * pow(h, twin.power)), shift_error, 64 * epsilon<T>() * p_scale});
+      measured.push_back(twin_measurement(N, h, gap, scale, shifted.p_minus, plain_legendre.p_minus,
+                                          shifted.p_plus, plain_legendre.p_plus, twin));
     }
     return measured;
   }
@@ -207,11 +211,8 @@ struct MismatchedLegendreClaim : Claim<MismatchedLegendreClaim> {
     return order;
   }
 
-  template <LagrangianSystem System>
-  static ClaimResult evaluate(const CaseContext<System>& context) {
-    using T = typename System::Scalar;
-    constexpr int n = System::dimension;
-    ClaimResult claim = result();
+  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     const auto& future = context.scheme.future;
     const auto& past = context.scheme.past;
     const bool same = same_rule(future, past);
@@ -227,7 +228,7 @@ struct MismatchedLegendreClaim : Claim<MismatchedLegendreClaim> {
     if (order >= 1) {
       claim.series.push_back(sweep_series(context, "|q_N − q(T)| (original equation)", error, predicted(context)));
       conclude(claim);
-      return claim;
+      return;
     }
     // Inconsistent: the error against the original solution must not vanish…
     Series original = sweep_series(context, "|q_N − q(T)| (original equation)", error, std::nullopt);
@@ -241,7 +242,7 @@ struct MismatchedLegendreClaim : Claim<MismatchedLegendreClaim> {
     if (!same || !mismatch.power || *mismatch.power != 1) {
       claim.explanation = "inconsistent; no modified equation is predicted for this mismatch";
       conclude(claim);
-      return claim;
+      return;
     }
     // …and the scheme converges at order 1 to L_mod = L − c·q, c the net coefficient of h¹;
     // the higher powers of the mismatch perturb the force by O(h).
@@ -266,7 +267,6 @@ struct MismatchedLegendreClaim : Claim<MismatchedLegendreClaim> {
                         sweep_series(context, "|q_N − q_mod(T)| (modified equation)", modified_error,
                                      OrderPrediction{1, false}));
     conclude(claim);
-    return claim;
   }
 };
 

@@ -138,9 +138,7 @@ DifferenceResidual<typename System::Scalar> euler_lagrange_check(const System& s
 template <LagrangianSystem System>
 DifferenceResidual<typename System::Scalar> del_residual(
     const System& system, const DelScheme<typename System::Scalar>& scheme,
-    const Vector<typename System::Scalar, System::dimension>& q0,
-    const Vector<typename System::Scalar, System::dimension>& q1,
-    const Vector<typename System::Scalar, System::dimension>& q2,
+    const VectorOf<System>& q0, const VectorOf<System>& q1, const VectorOf<System>& q2,
     const typename System::Scalar& h) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;

@@ -40,21 +40,13 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
 
   // Ranges in log10.
   std::optional<double> x_low, x_high, y_low, y_high;
-  for (const auto& [x, y] : tolerance_line) {
-    y_low = std::min(y_low.value_or(y), y);
-    y_high = std::max(y_high.value_or(y), y);
-  }
+  for (const auto& [x, y] : tolerance_line) extend(y_low, y_high, y);
   bool any_zero = false;
   for (const auto& s : all)
     for (const auto& p : s.points) {
-      x_low = std::min(x_low.value_or(p.x), p.x);
-      x_high = std::max(x_high.value_or(p.x), p.x);
-      if (p.y) {
-        y_low = std::min(y_low.value_or(*p.y), *p.y);
-        y_high = std::max(y_high.value_or(*p.y), *p.y);
-      } else {
-        any_zero = true;
-      }
+      extend(x_low, x_high, p.x);
+      if (p.y) extend(y_low, y_high, *p.y);
+      any_zero = any_zero || !p.y;
     }
   // NaN when the main series states no floor (a plain double: GCC misreads optional here).
   double floor_log = NAN;
@@ -69,18 +61,6 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
     y_low = centre - 2;
     y_high = centre + 1;
   }
-  auto widen = [](std::optional<double>& low, std::optional<double>& high, double minimum_span,
-                  double padding) {
-    double span = *high - *low;
-    if (span < minimum_span) {
-      double middle = (*high + *low) / 2;
-      *low = middle - minimum_span / 2;
-      *high = middle + minimum_span / 2;
-      span = minimum_span;
-    }
-    *low -= padding * span;
-    *high += padding * span;
-  };
   widen(x_low, x_high, 0.6, 0.06);
   widen(y_low, y_high, 1.0, 0.08);
 

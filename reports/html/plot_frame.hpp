@@ -161,6 +161,27 @@ struct PlotAxes {
 
 using Ticks = std::vector<std::pair<double, std::string>>;
 
+// [low, high] extended to take in v (both empty before the first value).
+inline void extend(std::optional<double>& low, std::optional<double>& high, double v) {
+  low = std::min(low.value_or(v), v);
+  high = std::max(high.value_or(v), v);
+}
+
+// [low, high] widened to at least `minimum_span` about its middle, then padded by `padding`
+// times its span on each side (log10 units on a log axis).
+inline void widen(std::optional<double>& low, std::optional<double>& high, double minimum_span,
+                  double padding) {
+  double span = *high - *low;
+  if (span < minimum_span) {
+    double middle = (*high + *low) / 2;
+    *low = middle - minimum_span / 2;
+    *high = middle + minimum_span / 2;
+    span = minimum_span;
+  }
+  *low -= padding * span;
+  *high += padding * span;
+}
+
 // The plot's background.
 inline void write_background(std::ostream& svg, const PlotAxes& axes) {
   svg << "<rect x=\"" << axes.left << "\" y=\"" << axes.top << "\" width=\"" << axes.right - axes.left

@@ -43,31 +43,14 @@ std::string render_speed_map(const json& claim, const std::string& key) {
   std::optional<double> x_low, x_high, y_low, y_high;
   bool any_zero = false;
   for (const auto& p : points) {
-    x_low = std::min(x_low.value_or(p.x), p.x);
-    x_high = std::max(x_high.value_or(p.x), p.x);
-    if (p.y) {
-      y_low = std::min(y_low.value_or(*p.y), *p.y);
-      y_high = std::max(y_high.value_or(*p.y), *p.y);
-    } else {
-      any_zero = true;
-    }
+    extend(x_low, x_high, p.x);
+    if (p.y) extend(y_low, y_high, *p.y);
+    any_zero = any_zero || !p.y;
   }
   if (!y_low) {  // every h_max is 0
     y_low = -3;
     y_high = 0;
   }
-  auto widen = [](std::optional<double>& low, std::optional<double>& high, double minimum_span,
-                  double padding) {
-    double span = *high - *low;
-    if (span < minimum_span) {
-      double middle = (*high + *low) / 2;
-      *low = middle - minimum_span / 2;
-      *high = middle + minimum_span / 2;
-      span = minimum_span;
-    }
-    *low -= padding * span;
-    *high += padding * span;
-  };
   widen(x_low, x_high, 0.6, 0.06);
   widen(y_low, y_high, 1.0, 0.08);
 

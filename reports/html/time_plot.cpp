@@ -52,8 +52,7 @@ std::string render_time_plot(const json& claim, const std::string& key) {
       }
       line.points.emplace_back(time, *y);
       t_high = std::max(t_high.value_or(time), time);
-      y_low = std::min(y_low.value_or(*y), *y);
-      y_high = std::max(y_high.value_or(*y), *y);
+      extend(y_low, y_high, *y);
     }
     lines.push_back(line);
   }

@@ -85,8 +85,8 @@ std::string render_work_precision(const json& cases, const json& run, bool wall_
     std::optional<double> x_low, x_high, y_low, y_high, floor;
     for (const auto& line : lines) {
       for (const auto& [x, y, title] : line.points) {
-        x_low = std::min(x_low.value_or(x), x), x_high = std::max(x_high.value_or(x), x);
-        y_low = std::min(y_low.value_or(y), y), y_high = std::max(y_high.value_or(y), y);
+        extend(x_low, x_high, x);
+        extend(y_low, y_high, y);
       }
       if (line.floor) floor = std::max(floor.value_or(*line.floor), *line.floor);
     }
