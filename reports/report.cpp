@@ -274,6 +274,15 @@ std::string csv_field(const std::string& text) {
   return out + "\"";
 }
 
+// A text cell (case, claim, series) that a spreadsheet would read as a formula — its first
+// character '=', '+', '-', '@', a tab or a carriage return (OWASP's CSV injection rule) — gets a
+// leading apostrophe, which spreadsheets show as text and do not evaluate. Numeric columns never
+// pass through here: "-2.5e-3" stays a number.
+std::string csv_text(const std::string& text) {
+  const bool formula = !text.empty() && std::string("=+-@\t\r").find(text.front()) != std::string::npos;
+  return csv_field(formula ? "'" + text : text);
+}
+
 }  // namespace
 
 std::string render_csv(const nlohmann::json& report) {
@@ -297,8 +306,8 @@ std::string render_csv(const nlohmann::json& report) {
         for (std::size_t i = 0; i < h.size() && i < error.size(); ++i) {
           // A series has one point per step count of the sweep, in order (per-step claims too).
           const int N = h.size() == steps.size() ? steps[i] : 0;
-          out << csv_field(name) << "," << csv_field(claim.value("id", std::string())) << ","
-              << csv_field(s.value("label", std::string())) << "," << h[i].get<std::string>() << ","
+          out << csv_text(name) << "," << csv_text(claim.value("id", std::string())) << ","
+              << csv_text(s.value("label", std::string())) << "," << h[i].get<std::string>() << ","
               << (N ? std::to_string(N) : std::string()) << "," << error[i].get<std::string>()
               << "," << s.value("floor", std::string()) << ","
               << (N && evaluations.count(N) ? evaluations[N] : "") << ","
