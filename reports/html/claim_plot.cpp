@@ -72,8 +72,6 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
   std::size_t legend_rows = 2;
   const double legend_top = axis_bottom + 50, height = legend_top + 18.0 * legend_rows + 6;
   const PlotAxes axes{left, right, top, plot_bottom, axis_bottom, *x_low, *x_high, *y_low, *y_high};
-  auto px = [&](double x) { return axes.px(x); };
-  auto py = [&](double y) { return axes.py(y); };
   const double zero_y = plot_bottom + zero_band / 2 + 2;
   const std::string clip = "clip-" + identifier(key);
 
@@ -92,10 +90,10 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
   write_axis_titles(svg, axes, "step h", "error");
   // The stated floor of the main series, when it falls inside the plotted range.
   if (std::isfinite(floor_log) && floor_log > *y_low && floor_log < *y_high) {
-    svg << "<g data-floor=\"1\"><line x1=\"" << left << "\" y1=\"" << fixed(py(floor_log))
-        << "\" x2=\"" << right << "\" y2=\"" << fixed(py(floor_log))
+    svg << "<g data-floor=\"1\"><line x1=\"" << left << "\" y1=\"" << fixed(axes.py(floor_log))
+        << "\" x2=\"" << right << "\" y2=\"" << fixed(axes.py(floor_log))
         << "\" stroke=\"#98a2b3\" stroke-dasharray=\"2 3\"/><text x=\"" << right - 4 << "\" y=\""
-        << fixed(py(floor_log) - 4) << "\" text-anchor=\"end\" fill=\"#5b6576\">floor "
+        << fixed(axes.py(floor_log) - 4) << "\" text-anchor=\"end\" fill=\"#5b6576\">floor "
         << escape(short_decimal(text_of(series_list[0], "floor"), 3))
         << "</text><title>round-off / reference floor " << escape(text_of(series_list[0], "floor"))
         << "</title></g>\n";
@@ -113,7 +111,7 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
   if (!tolerance_line.empty()) {
     std::string path;
     for (const auto& [x, y] : tolerance_line)
-      path += (path.empty() ? "M" : " L") + fixed(px(x)) + " " + fixed(py(y));
+      path += (path.empty() ? "M" : " L") + fixed(axes.px(x)) + " " + fixed(axes.py(y));
     svg << "<path data-tolerance-line=\"1\" d=\"" << path
         << "\" fill=\"none\" stroke=\"#a40e26\" stroke-width=\"1.5\" stroke-dasharray=\"4 "
            "3\"><title>the tolerance "
@@ -134,16 +132,16 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
     low -= 0.08;
     high += 0.08;
     auto fit_y = [&](double x) { return *s.log10_constant + *s.order * x; };
-    svg << "<line data-fit=\"1\" x1=\"" << fixed(px(low)) << "\" y1=\"" << fixed(py(fit_y(low)))
-        << "\" x2=\"" << fixed(px(high)) << "\" y2=\"" << fixed(py(fit_y(high))) << "\" stroke=\""
+    svg << "<line data-fit=\"1\" x1=\"" << fixed(axes.px(low)) << "\" y1=\"" << fixed(axes.py(fit_y(low)))
+        << "\" x2=\"" << fixed(axes.px(high)) << "\" y2=\"" << fixed(axes.py(fit_y(high))) << "\" stroke=\""
         << s.color << "\" stroke-width=\"2\"><title>least-squares fit: slope "
         << format_number(*s.order, 4) << "</title></line>\n";
     if (s.predicted) {
       double centre = sum / count;
       auto predicted_y = [&](double x) { return fit_y(centre) + *s.predicted * (x - centre); };
-      svg << "<line data-predicted=\"1\" x1=\"" << fixed(px(low)) << "\" y1=\""
-          << fixed(py(predicted_y(low))) << "\" x2=\"" << fixed(px(high)) << "\" y2=\""
-          << fixed(py(predicted_y(high))) << "\" stroke=\"" << s.color
+      svg << "<line data-predicted=\"1\" x1=\"" << fixed(axes.px(low)) << "\" y1=\""
+          << fixed(axes.py(predicted_y(low))) << "\" x2=\"" << fixed(axes.px(high)) << "\" y2=\""
+          << fixed(axes.py(predicted_y(high))) << "\" stroke=\"" << s.color
           << "\" stroke-width=\"1.2\" stroke-dasharray=\"6 4\" opacity=\"0.7\"><title>predicted "
              "slope "
           << format_number(*s.predicted, 4) << "</title></line>\n";
@@ -155,7 +153,7 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
     svg << "<g data-series-label=\"" << escape(s.label) << "\">";
     std::string path;
     for (const auto& p : s.points)
-      if (p.y) path += (path.empty() ? "M" : " L") + fixed(px(p.x)) + " " + fixed(py(*p.y));
+      if (p.y) path += (path.empty() ? "M" : " L") + fixed(axes.px(p.x)) + " " + fixed(axes.py(*p.y));
     if (!path.empty())
       svg << "<path d=\"" << path << "\" fill=\"none\" stroke=\"" << s.color
           << "\" stroke-width=\"0.8\" opacity=\"0.45\"/>";
@@ -168,14 +166,14 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
         title += " — error is exactly 0, drawn at the plot floor" +
                  (p.reason.empty() ? std::string() : " (dropped: " + escape(p.reason) + ")");
       if (p.status == "measured") title += " — measured (no order fit)";
-      double x = px(p.x);
+      double x = axes.px(p.x);
       svg << "\n<g data-point=\"" << p.status << "\"><title>" << title << "</title>";
       if (p.status == "zero") {
         svg << "<path d=\"M" << fixed(x - 5) << " " << fixed(zero_y - 4) << " L" << fixed(x + 5)
             << " " << fixed(zero_y - 4) << " L" << fixed(x) << " " << fixed(zero_y + 5)
             << " Z\" fill=\"#fff\" stroke=\"" << s.color << "\" stroke-width=\"1.6\"/>";
       } else {
-        double y = py(*p.y);
+        double y = axes.py(*p.y);
         bool filled = p.status == "used" || p.status == "measured";
         svg << "<circle cx=\"" << fixed(x) << "\" cy=\"" << fixed(y) << "\" r=\"4.2\" fill=\""
             << (filled ? s.color : "#fff") << "\" stroke=\"" << s.color

@@ -58,8 +58,6 @@ std::string render_speed_map(const json& claim, const std::string& key) {
   const double zero_band = any_zero ? 36 : 0, axis_bottom = plot_bottom + zero_band;
   const double legend_top = axis_bottom + 50, height = legend_top + 10;
   const PlotAxes axes{left, right, top, plot_bottom, axis_bottom, *x_low, *x_high, *y_low, *y_high};
-  auto px = [&](double x) { return axes.px(x); };
-  auto py = [&](double y) { return axes.py(y); };
   const double zero_y = plot_bottom + 23;  // the markers sit below the band's label
   const std::string color = series_colors[0];
 
@@ -96,20 +94,20 @@ std::string render_speed_map(const json& claim, const std::string& key) {
       pen_down = false;
       continue;
     }
-    path += (path.empty() ? "" : " ") + std::string(pen_down ? "L" : "M") + fixed(px(p->x)) + " " +
-            fixed(py(*p->y));
+    path += (path.empty() ? "" : " ") + std::string(pen_down ? "L" : "M") + fixed(axes.px(p->x)) + " " +
+            fixed(axes.py(*p->y));
     pen_down = true;
   }
   if (!path.empty())
     svg << "<path data-map-line=\"1\" d=\"" << path << "\" fill=\"none\" stroke=\"" << color
         << "\" stroke-width=\"1.6\"/>\n";
   for (const MapPoint* p : sorted) {
-    double x = px(p->x);
+    double x = axes.px(p->x);
     svg << "<g data-map-point=\"" << (p->y ? "positive" : "zero") << "\"><title>|w| = "
         << escape(p->speed) << ", h_max = " << escape(p->h_max)
         << (p->y ? "" : " — no step h > 0 works at this speed") << "</title>";
     if (p->y)
-      svg << "<circle cx=\"" << fixed(x) << "\" cy=\"" << fixed(py(*p->y))
+      svg << "<circle cx=\"" << fixed(x) << "\" cy=\"" << fixed(axes.py(*p->y))
           << "\" r=\"4.2\" fill=\"" << color << "\" stroke=\"" << color
           << "\" stroke-width=\"1.6\"/>";
     else

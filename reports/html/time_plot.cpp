@@ -67,8 +67,6 @@ std::string render_time_plot(const json& claim, const std::string& key) {
   const double height = plot_bottom + 50;
   // t on a linear axis from 0, the error on a log axis.
   const PlotAxes axes{left, right, top, plot_bottom, plot_bottom, 0, *t_high, *y_low, *y_high};
-  auto px = [&](double t) { return axes.px(t); };
-  auto py = [&](double y) { return axes.py(y); };
   std::ostringstream svg;
   svg << "<svg class=\"plot time\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width
       << "\" height=\"" << fixed(height) << "\" viewBox=\"0 0 " << width << " " << fixed(height)
@@ -86,7 +84,7 @@ std::string render_time_plot(const json& claim, const std::string& key) {
     const std::string color = series_colors[i % series_colors.size()];
     std::string path;
     for (const auto& [t, y] : lines[i].points)
-      path += (path.empty() ? "M" : " L") + fixed(px(t)) + " " + fixed(py(y));
+      path += (path.empty() ? "M" : " L") + fixed(axes.px(t)) + " " + fixed(axes.py(y));
     if (!path.empty())
       svg << "<path data-time-line=\"" << escape(lines[i].h) << "\" d=\"" << path
           << "\" fill=\"none\" stroke=\"" << color << "\" stroke-width=\"1.3\"/>\n";

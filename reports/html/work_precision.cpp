@@ -98,8 +98,6 @@ std::string render_work_precision(const json& cases, const json& run, bool wall_
     const double width = 640, left = 72, right = width - 24, top = 14, bottom = 244,
                  height = bottom + 50;
     const PlotAxes axes{left, right, top, bottom, bottom, *x_low, *x_high, *y_low, *y_high};
-    auto px = [&](double x) { return axes.px(x); };
-    auto py = [&](double y) { return axes.py(y); };
     out << "<figure class=\"work-precision\"><svg class=\"plot wp\" "
            "xmlns=\"http://www.w3.org/2000/svg\" width=\""
         << width << "\" height=\"" << height << "\" viewBox=\"0 0 " << width << " " << height
@@ -108,8 +106,8 @@ std::string render_work_precision(const json& cases, const json& run, bool wall_
     write_background(out, axes);
     if (floor && *floor > *y_low)
       out << "<rect data-floor=\"1\" x=\"" << left << "\" y=\""
-          << fixed(py(std::min(*floor, *y_high))) << "\" width=\"" << right - left << "\" height=\""
-          << fixed(bottom - py(std::min(*floor, *y_high)))
+          << fixed(axes.py(std::min(*floor, *y_high))) << "\" width=\"" << right - left << "\" height=\""
+          << fixed(bottom - axes.py(std::min(*floor, *y_high)))
           << "\" fill=\"#e9ecf2\"><title>below the floor: errors here cannot be told from rounding "
              "or the "
              "reference's own error</title></rect>\n";
@@ -124,11 +122,11 @@ std::string render_work_precision(const json& cases, const json& run, bool wall_
       const std::string color = series_colors[i % series_colors.size()];
       std::string path;
       for (const auto& [x, y, title] : lines[i].points)
-        path += (path.empty() ? "M" : " L") + fixed(px(x)) + " " + fixed(py(y));
+        path += (path.empty() ? "M" : " L") + fixed(axes.px(x)) + " " + fixed(axes.py(y));
       out << "<path data-wp-line=\"" << escape(lines[i].name) << "\" d=\"" << path
           << "\" fill=\"none\" stroke=\"" << color << "\" stroke-width=\"1.6\"/>";
       for (const auto& [x, y, title] : lines[i].points)
-        out << "<circle cx=\"" << fixed(px(x)) << "\" cy=\"" << fixed(py(y))
+        out << "<circle cx=\"" << fixed(axes.px(x)) << "\" cy=\"" << fixed(axes.py(y))
             << "\" r=\"3.5\" fill=\"" << color << "\"><title>"
             << escape(lines[i].name + ", " + title) << "</title></circle>";
       out << "\n";
