@@ -3,6 +3,9 @@
 //
 // A claim is a type deriving from Claim<itself> with
 //   static constexpr const char* id, source, prediction;
+//   static constexpr const char* series_rules[];  // the rules its series may be decided by
+//                                                 // (reports/SCHEMA.md): `vivv report` and
+//                                                 // --baseline refuse a report naming another
 //   template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
 //   static void measure(const CaseContext<System>&, ClaimResult& claim);
 // which adds its series and evidence to the claim (result() made it, with the id, source and

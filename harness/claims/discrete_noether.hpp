@@ -15,6 +15,7 @@ namespace vivv {
 
 struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
   static constexpr const char* id = "discrete-noether";
+  static constexpr const char* series_rules[] = {"per-step-tolerance"};
   static constexpr const char* source = "Marsden–West §1.3.3 (discrete Noether theorem)";
   static constexpr const char* prediction =
       "J_k = p_k · ξ(q_k) is the same at every step k, at every h, to working precision (rounding "

@@ -417,6 +417,7 @@ Series energy_size_series(const CaseContext<System>& context,
 
 struct EnergyBehaviourClaim : Claim<EnergyBehaviourClaim> {
   static constexpr const char* id = "energy-behaviour";
+  static constexpr const char* series_rules[] = {"energy-drift", "order", "floor", "none"};
   static constexpr const char* source = "Hairer–Lubich–Wanner ch. IX (backward error analysis); Marsden–West §1.3.4";
   static constexpr const char* prediction =
       "the energy error E_k − E_0 stays bounded without drift: averaged over the motion's returns "

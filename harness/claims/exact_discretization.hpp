@@ -12,6 +12,7 @@ namespace vivv {
 
 struct ExactDiscretizationClaim : Claim<ExactDiscretizationClaim> {
   static constexpr const char* id = "exact-discretization";
+  static constexpr const char* series_rules[] = {"per-step-tolerance"};
   static constexpr const char* source = "paper Lemma 5.2, Thm 5.3";
   static constexpr const char* prediction =
       "the discrete evolution of the exact discretization equals the flow, F_h(v) = F^exact_h(v), "

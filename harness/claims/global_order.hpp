@@ -215,6 +215,7 @@ void unresolved_motion_is_inconclusive(Series& series, const T& size, double tol
 
 struct GlobalOrderClaim : Claim<GlobalOrderClaim> {
   static constexpr const char* id = "global-order";
+  static constexpr const char* series_rules[] = {"order", "floor", "none"};
   static constexpr const char* source = "Marsden–West Thm 2.3.1 (1); paper Thm 5.5 corollary";
   static constexpr const char* prediction =
       "|q_N − q(T)| = O(h^r) after N = T/h steps of an order-r discrete Lagrangian";

@@ -187,6 +187,8 @@ void add_exact_coefficients(ClaimResult& claim, const CaseContext<System>& conte
 
 struct LagrangianOrderClaim : Claim<LagrangianOrderClaim> {
   static constexpr const char* id = "lagrangian-order";
+  static constexpr const char* series_rules[] = {
+      "order", "floor", "none", "signed-coefficient", "exact-coefficients"};
   static constexpr const char* source = "Marsden–West Def. 2.3.1; paper §2.2";
   static constexpr const char* prediction =
       "|L_d(q(0), q(h); h) − ∫₀ʰ L(q, q') dt| = O(h^{r+1}) along solutions";
@@ -245,6 +247,7 @@ struct LagrangianOrderClaim : Claim<LagrangianOrderClaim> {
 
 struct LegendreOrderClaim : Claim<LegendreOrderClaim> {
   static constexpr const char* id = "legendre-order";
+  static constexpr const char* series_rules[] = {"order", "floor", "none"};
   static constexpr const char* source = "Marsden–West Thm 2.3.1 (2) vs paper §2.3";
   static constexpr const char* prediction =
       "p_end(q(0), q(h)) − p(h) and p_begin(q(0), q(h)) − p(0) are at least O(h^r) — not "

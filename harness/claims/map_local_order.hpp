@@ -18,6 +18,7 @@ namespace vivv {
 
 struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
   static constexpr const char* id = "local-order";
+  static constexpr const char* series_rules[] = {"order", "floor", "none"};
   static constexpr const char* source = "Hairer–Nørsett–Wanner I, Thm II.3.4; Marsden–West Thm 2.3.1";
   static constexpr const char* prediction =
       "one step of an order-r map from states along the reference orbit: |Φ_h(x) − φ_h(x)| = O(h^(r+1)) on (q, p)";

@@ -19,6 +19,7 @@ namespace vivv {
 
 struct ModifiedEnergyClaim : Claim<ModifiedEnergyClaim> {
   static constexpr const char* id = "modified-energy";
+  static constexpr const char* series_rules[] = {"order", "floor", "none", "energy-drift"};
   static constexpr const char* source = "Hairer–Lubich–Wanner IX.3; Vermeeren 2017 (modified Lagrangians)";
   static constexpr const char* prediction =
       "for L = ½|w|² − U(q), max_k |H̃_k − H̃_0| = O(h⁴) with H̃ = H + h² H₂ (midpoint: H₂ = −(pᵀU''p "

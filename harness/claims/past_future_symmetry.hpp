@@ -19,6 +19,7 @@ namespace vivv {
 
 struct PastFutureSymmetryClaim : Claim<PastFutureSymmetryClaim> {
   static constexpr const char* id = "past-future-symmetry";
+  static constexpr const char* series_rules[] = {"order", "floor", "none"};
   static constexpr const char* source = "paper Thm 5.4 (proof), §2.6";
   static constexpr const char* prediction =
       "at fixed end points the blown-up critical points (v, ṽ) of two discretizations in order-r "

@@ -50,6 +50,7 @@ System system_at_current_precision(const CaseSpec& spec, const System&) {
 
 struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {
   static constexpr const char* id = "precision-leak";
+  static constexpr const char* series_rules[] = {"none"};
   static constexpr const char* source = "round-off analysis of a one-step method (Higham, Accuracy and Stability "
                                         "of Numerical Algorithms, ch. 2)";
   static constexpr const char* prediction =

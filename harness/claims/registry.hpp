@@ -3,6 +3,8 @@
 // (docs/claims.md). Adding a claim = writing its type and listing it here.
 #pragma once
 
+#include <iterator>
+#include <set>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -19,6 +21,7 @@
 #include "harness/claims/symplecticity.hpp"
 #include "harness/claims/tq_claims.hpp"
 #include "harness/claims/twin_term.hpp"
+#include "harness/verdicts/rejudge.hpp"
 
 namespace vivv {
 
@@ -39,6 +42,20 @@ inline std::vector<ClaimInfo> registered_claims() {
   std::apply([&](auto... claim) { (info.push_back({claim.id, claim.source, claim.prediction}), ...); },
              ClaimRegistry{});
   return info;
+}
+
+// Every registered claim's id with the rules its series may be decided by (series_rules): what
+// re-judging a report takes from the claims rather than from the report (harness/verdicts/rejudge.hpp).
+inline ClaimSeriesRules registered_series_rules() {
+  ClaimSeriesRules rules;
+  std::apply(
+      [&](auto... claim) {
+        ((rules[claim.id] = std::set<std::string>(std::begin(claim.series_rules),
+                                                  std::end(claim.series_rules))),
+         ...);
+      },
+      ClaimRegistry{});
+  return rules;
 }
 
 // The order the theorem behind claim `id` predicts for the case's main series;

@@ -16,6 +16,7 @@ namespace vivv {
 
 struct SymplecticityClaim : Claim<SymplecticityClaim> {
   static constexpr const char* id = "symplecticity";
+  static constexpr const char* series_rules[] = {"per-step-tolerance"};
   static constexpr const char* source = "Marsden–West §1.3.2";
   static constexpr const char* prediction =
       "the one-step map (q_k, p_k) ↦ (q_{k+1}, p_{k+1}) — a variational integrator's DEL map, or the "

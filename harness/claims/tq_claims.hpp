@@ -30,6 +30,7 @@ State<typename System::Scalar, System::dimension> tq_map(const CaseContext<Syste
 
 struct LocalOrderClaim : Claim<LocalOrderClaim> {
   static constexpr const char* id = "order";
+  static constexpr const char* series_rules[] = {"order", "floor", "none"};
   static constexpr const char* source = "paper Thm 5.5";
   static constexpr const char* prediction =
       "local error |F_h(v) − F^exact_h(v)| = O(h^{r+1}) for an order-r discretization of TQ";
@@ -53,6 +54,7 @@ struct LocalOrderClaim : Claim<LocalOrderClaim> {
 
 struct ContactOrderClaim : Claim<ContactOrderClaim> {
   static constexpr const char* id = "contact-order";
+  static constexpr const char* series_rules[] = {"order", "floor", "none"};
   static constexpr const char* source = "paper Thm 5.4";
   static constexpr const char* prediction =
       "two discretizations in order-r contact have evolutions agreeing to O(h^{r+1}); r is their "
@@ -91,6 +93,7 @@ struct ContactOrderClaim : Claim<ContactOrderClaim> {
 
 struct QxQTQEquivalenceClaim : Claim<QxQTQEquivalenceClaim> {
   static constexpr const char* id = "qxq-tq-equivalence";
+  static constexpr const char* series_rules[] = {"per-step-tolerance"};
   static constexpr const char* source = "paper §6, Lemma 6.1";
   static constexpr const char* prediction =
       "the TQ evolution of L_h = L_d(d−, d+; h) equals the Q×Q DEL of L_d conjugated by "
@@ -130,6 +133,7 @@ struct QxQTQEquivalenceClaim : Claim<QxQTQEquivalenceClaim> {
 
 struct ExistenceUniquenessClaim : Claim<ExistenceUniquenessClaim> {
   static constexpr const char* id = "existence-uniqueness";
+  static constexpr const char* series_rules[] = {"order", "floor", "none", "step-size-search"};
   static constexpr const char* source = "paper Thm 4.2";
   static constexpr const char* prediction =
       "Newton from the h = 0 solution converges to a near-diagonal critical point for all "

@@ -57,6 +57,7 @@ TwinMeasurement<T> twin_measurement(int N, const T& h, const T& gap, const T& sc
 
 struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
   static constexpr const char* id = "twin-term-invariance";
+  static constexpr const char* series_rules[] = {"per-step-tolerance"};
   static constexpr const char* source = "paper §2.2–2.3";
   static constexpr const char* prediction =
       "trajectories with the twin term a·h^s·(end − begin) and without it are identical to "
@@ -181,6 +182,7 @@ TwinMismatch<T> twin_mismatch(const std::optional<TwinTerm<T>>& future, const st
 
 struct MismatchedLegendreClaim : Claim<MismatchedLegendreClaim> {
   static constexpr const char* id = "mismatched-legendre";
+  static constexpr const char* series_rules[] = {"order", "floor", "none", "does-not-converge"};
   static constexpr const char* source = "paper §2.3";
   static constexpr const char* prediction =
       "the mismatched DEL p_begin[L_d] = p_end[L~_d] loses what the mismatch costs: twin terms "

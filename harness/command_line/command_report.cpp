@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "harness/command_line/command_line.hpp"
+#include "harness/run/run_case.hpp"
 #include "harness/verdicts/rejudge.hpp"
 #include "harness/library/version.hpp"
 #include "reports/report.hpp"
@@ -53,8 +54,7 @@ int command_report(const std::vector<std::string>& args, const std::string& comm
       throw BadInput("unknown option '" + args[i] + "'");
     } else {
       try {
-        inputs.emplace_back(args[i], read_report(args[i]));
-        check_series_follow_from_errors(inputs.back().second, args[i]);
+        inputs.emplace_back(args[i], read_judged_report(args[i], claim_series_rules()));
       } catch (const nlohmann::json::exception& error) {  // a shape the schema does not rule out
         throw BadInput(args[i] + ": a field is missing or of an unexpected type for vivv report (" +
                        error.what() + "): a damaged or edited report");

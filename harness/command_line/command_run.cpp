@@ -1,6 +1,7 @@
 // `vivv run`: read and check every case, compute the selected ones, compare with a baseline, write
 // the reports.
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -48,7 +49,7 @@ void check_output_directory(const std::string& out) {
     throw BadInput("--out: '" + out + "' exists and is not a directory");
   fs::create_directories(out, error);
   if (error) throw BadInput("--out: cannot create '" + out + "': " + error.message());
-  // The three files are replaced by renames at the end: one that is a directory (or a device, a
+  // The four files are replaced by renames at the end: one that is a directory (or a device, a
   // FIFO) would fail there, after every case computed and with the others already replaced.
   for (const char* name : {"report.json", "report.html", "junit.xml", "report.csv"}) {
     const fs::path file = fs::path(out) / name;
@@ -65,8 +66,26 @@ void check_output_directory(const std::string& out) {
   fs::remove(probe, error);
 }
 
+// Before any work: a --baseline that is one of the four files the run replaces in DIR (by
+// device and inode: a hard link, a symbolic link or another spelling of the path is the same
+// file) would be replaced by the run it judges — the same command would then pass on its second
+// run. Refused, naming both options.
+void refuse_baseline_among_outputs(const std::string& baseline, const std::string& out) {
+  struct stat baseline_status {};
+  if (::stat(baseline.c_str(), &baseline_status) != 0) return;  // read_report names what is wrong
+  for (const char* name : {"report.json", "report.html", "junit.xml", "report.csv"}) {
+    const fs::path file = fs::path(out) / name;
+    struct stat status {};
+    if (::stat(file.c_str(), &status) == 0 && status.st_dev == baseline_status.st_dev &&
+        status.st_ino == baseline_status.st_ino)
+      throw BadInput("--baseline " + baseline + " is " + file.string() +
+                     ", which this run replaces (--out " + out +
+                     "): the baseline would be overwritten by the run it judges; copy it "
+                     "elsewhere first, or write this run to another --out");
+  }
+}
 
-// Writes DIR/report.json, report.html and junit.xml, prints the claims table;
+// Writes DIR/report.json, report.html, junit.xml and report.csv, prints the claims table;
 // the exit code of the verdicts.
 int write_reports(const std::string& out, const nlohmann::json& report) {
   std::vector<std::string> paths = write_report_directory(out, report);
@@ -89,13 +108,15 @@ int command_run(const std::vector<std::string>& args, const std::string& command
     if (!fresh)
       throw CaseError(file, "name", "'" + specs.back().name + "' is also the name of " + it->second);
   }
-  // The baseline is read (and checked like any input of vivv report) before any case computes.
+  // The baseline is read and checked like any input of vivv report — schema, shape, every fit
+  // and order verdict judged again by its claim's rules — before any case computes.
   std::optional<nlohmann::json> baseline;
   if (options.baseline) {
+    refuse_baseline_among_outputs(*options.baseline, options.out);
     try {
-      baseline = read_report(*options.baseline);
+      baseline = read_judged_report(*options.baseline, claim_series_rules());
     } catch (const std::exception& error) {
-      throw BadInput("--baseline: " + std::string(error.what()));
+      throw BadInput("--baseline " + *options.baseline + ": " + error.what());
     }
   }
   // The options against every case before any computes: a case they cannot run refuses the run.
@@ -136,8 +157,13 @@ int command_run(const std::vector<std::string>& args, const std::string& command
   }
   nlohmann::json report = assemble_report(cases, {command_line, library_versions()});
   if (!refused.empty()) report["refused"] = refused;
-  if (baseline)
-    compare_with_baseline(report, *baseline, *options.baseline, options.baseline_tolerance);
+  if (baseline) {
+    try {
+      compare_with_baseline(report, *baseline, *options.baseline, options.baseline_tolerance);
+    } catch (const std::exception& error) {
+      throw BadInput("--baseline " + *options.baseline + ": comparing with it: " + error.what());
+    }
+  }
   report["run"]["case_paths"] = case_paths;
   report["run"]["overrides"] = {
       {"digits", options.digits ? nlohmann::json(*options.digits) : nlohmann::json()},

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "cases/catalogue.hpp"
+#include "harness/claims/registry.hpp"
 #include "harness/verdicts/order_fit.hpp"
 #include "harness/run/run_system.hpp"
 
@@ -128,5 +129,7 @@ CaseResult run_case(const CaseSpec& case_spec, std::optional<int> digits, bool r
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return result;
 }
+
+ClaimSeriesRules claim_series_rules() { return registered_series_rules(); }
 
 }  // namespace vivv

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cases/case_file.hpp"
+#include "harness/verdicts/rejudge.hpp"
 #include "reports/results.hpp"
 
 namespace vivv {
@@ -30,5 +31,9 @@ CaseResult run_case(const CaseSpec& spec, std::optional<int> digits, bool refine
 // With --refine, the fit also drops leading points whose pairwise order is
 // more than tolerance/4 from the finest (FitOptions::asymptote_tolerance).
 std::optional<std::string> unsettled_series(const std::vector<ClaimResult>& claims, double tolerance);
+
+// The registered claims' series rules (registered_series_rules), for re-judging a report
+// without including every claim.
+ClaimSeriesRules claim_series_rules();
 
 }  // namespace vivv
