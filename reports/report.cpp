@@ -22,6 +22,7 @@
 #include "reports/junit_report.hpp"
 #include "reports/schema_check.hpp"
 #include "core/platform/signals.hpp"
+#include "core/platform/text.hpp"
 
 namespace vivv {
 
@@ -319,8 +320,12 @@ std::string render_csv(const nlohmann::json& report) {
 }
 
 std::vector<std::string> write_report_directory(const std::string& directory,
-                                                const nlohmann::json& report) {
+                                                const nlohmann::json& computed) {
   namespace fs = std::filesystem;
+  // Text that is not UTF-8 — a program's output, a path's bytes — never ends a run after every
+  // case has computed: such bytes become U+FFFD in every file, and nothing else changes.
+  const nlohmann::json report =
+      nlohmann::json::parse(computed.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   const std::vector<std::pair<std::string, std::string>> files = {
       {"report.json", report.dump(2) + "\n"},
       {"report.html", render_html(report)},
@@ -331,7 +336,7 @@ std::vector<std::string> write_report_directory(const std::string& directory,
   if (error) throw ReportError("cannot create " + directory + ": " + error.message());
   std::vector<std::string> paths, temporaries;
   // Every temporary first, then the renames: a write error leaves no final file changed and no
-  // temporary behind; an interruption waits until the three files are in place.
+  // temporary behind; an interruption waits until the four files are in place.
   DeferInterrupts defer;
   try {
     for (const auto& [name, content] : files) {
@@ -362,7 +367,18 @@ void write_exclusively(const std::string& path, const std::string& content) {
   }
 }
 
-void print_claims_table(std::ostream& out, const nlohmann::json& report) {
+// The table and its notes as print_claims_table prints them, before the terminal's escaping.
+static void write_claims_table(std::ostream& out, const nlohmann::json& report);
+
+void print_claims_table(std::ostream& terminal, const nlohmann::json& report) {
+  // Names, messages and a program's quoted output reach the console: control characters shown
+  // escaped, never sent to the terminal as escape sequences (core/platform/text.hpp).
+  std::ostringstream out;
+  write_claims_table(out, report);
+  terminal << terminal_safe(out.str());
+}
+
+static void write_claims_table(std::ostream& out, const nlohmann::json& report) {
   struct Row {
     std::string name, claim, verdict, observed, predicted, note;
   };

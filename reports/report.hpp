@@ -54,9 +54,9 @@ nlohmann::json read_report(const std::string& path);
 // and the run's L evaluations and seconds at that N), for a user's own plots.
 std::string render_csv(const nlohmann::json& report);
 
-// Writes DIR/report.json, DIR/report.html and DIR/junit.xml: all rendered
-// first, then each written atomically, so a failure leaves none half-written.
-// Returns the three paths.
+// Writes DIR/report.json, DIR/report.html, DIR/junit.xml and DIR/report.csv: all rendered
+// first, then each written atomically, so a failure leaves none half-written. Bytes that are
+// not UTF-8 in any string of `report` are written as U+FFFD. Returns the four paths.
 std::vector<std::string> write_report_directory(const std::string& directory,
                                                 const nlohmann::json& report);
 
@@ -71,7 +71,8 @@ void write_atomically(const std::string& path, const std::string& content);
 // symbolic link (O_CREAT | O_EXCL | O_NOFOLLOW), mode 0600.
 void write_exclusively(const std::string& path, const std::string& content);
 
-// The aligned claims table: case, claim, verdict, observed and predicted order.
+// The aligned claims table: case, claim, verdict, observed and predicted order, with the
+// notes on what did not pass; control characters shown escaped (terminal_safe).
 void print_claims_table(std::ostream& out, const nlohmann::json& report);
 
 // Every verdict a claim can have, in the order summaries list them.

@@ -86,14 +86,16 @@ python3 "$source_dir/tests/fuzz/fuzz_inputs.py" "$vivv" "$source_dir/tests/fuzz/
 tail -1 "$work/fuzz.log"
 # The tests whose outcome involves wall time (ctest label "timing": --max-seconds budgets,
 # progress heartbeats, signals while a run computes, and the process protocol's faults, timeouts
-# and signals, tests/process/check_process_maps.py) run again here, at about a third of the plain build's
+# and signals, tests/process/check_process_maps.py) and the hostile inputs' tests (label
+# "hostile": programs that escape, nest, write bytes that are not UTF-8 or numbers out of range,
+# CSV formulas, edited baselines and reports) run again here, at about a third of the plain build's
 # speed: a check at another speed, with this build's vivv, and no sanitizer report allowed (one
 # exits 86, which no expected exit code is).
 # AddressSanitizer would catch the SIGSEGV the interrupt check sends a --jobs worker and end it with
 # its own report (exit 2 for the run instead of 3 naming the signal): here, and only here, a
 # SIGSEGV is left to kill the process as it would in the plain build.
-(cd "$work/build" && ASAN_OPTIONS="$ASAN_OPTIONS:handle_segv=0" ctest -L timing --output-on-failure) \
+(cd "$work/build" && ASAN_OPTIONS="$ASAN_OPTIONS:handle_segv=0" ctest -L "timing|hostile" --output-on-failure) \
   > "$work/timing.log" 2>&1 ||
   { tail -60 "$work/timing.log"; exit 1; }
 grep -E "tests passed|tests failed" "$work/timing.log"
-echo "sanitizers clean: the default suite, the test cases, the fuzz corpus and the timing tests"
+echo "sanitizers clean: the default suite, the test cases, the fuzz corpus, the timing and the hostile tests"

@@ -87,22 +87,39 @@ T from_decimal(const std::string& text) {
     const T value = std::is_same_v<T, double> ? std::strtod(text.c_str(), &end)
                                               : std::strtold(text.c_str(), &end);
     if (end != text.c_str() + text.size() || std::isspace(static_cast<unsigned char>(text.front())))
-      throw std::invalid_argument("not a number: '" + text + "'");
+      throw std::invalid_argument("not a number: '" + text.substr(0, 100) + "'");
     if (errno == ERANGE && (std::isinf(value) || value == 0)) {
       std::ostringstream range;
       range << std::setprecision(2) << std::numeric_limits<T>::denorm_min() << " and "
             << std::numeric_limits<T>::max();
-      throw std::out_of_range("'" + text + "' is out of range for " + scalar_name<T>() +
+      throw std::out_of_range("'" + text.substr(0, 100) + (text.size() > 100 ? "…" : "") +
+                              "' is out of range for " + scalar_name<T>() +
                               ": its magnitude must lie between " + range.str() + ", or be 0");
     }
     return value;
   } else {
     // Boost accepts only a complete decimal number and throws otherwise.
+    T value;
     try {
-      return T(text);
+      value = T(text);
     } catch (const std::exception&) {
-      throw std::invalid_argument("not a number: '" + text + "'");
+      throw std::invalid_argument("not a number: '" + text.substr(0, 100) + "'");
     }
+    // float128 and MPFR round a number beyond their range to infinity or zero without a word:
+    // "1e5000" in float128 would enter a computation as inf, "1e-5000" as 0.
+    using std::isinf;
+    const std::size_t mantissa_end = text.find_first_of("eE");
+    const bool nonzero =
+        text.substr(0, mantissa_end).find_first_of("123456789") != std::string::npos;
+    if (isinf(value) || (value == 0 && nonzero)) {
+      std::ostringstream range;
+      range << std::setprecision(2) << std::numeric_limits<T>::denorm_min() << " and "
+            << std::numeric_limits<T>::max();
+      throw std::out_of_range("'" + text.substr(0, 100) + (text.size() > 100 ? "…" : "") +
+                              "' is out of range for " + scalar_name<T>() +
+                              ": its magnitude must lie between " + range.str() + ", or be 0");
+    }
+    return value;
   }
 }
 

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "core/platform/text.hpp"
 #include "harness/command_line/command_line.hpp"
 #include "harness/library/version.hpp"
 
@@ -75,10 +76,10 @@ int main(int argc, char** argv) {
       std::cout << library_versions() << "\n";
       return exit_pass;
     }
-    std::cerr << "vivv: unknown command '" << command << "'\n";
+    std::cerr << "vivv: unknown command '" << terminal_safe(cut_at_character(command, 100)) << "'\n";
     return usage(std::cerr, exit_bad_input);
   } catch (const WorkerCrash& error) {
-    std::cerr << "vivv: " << error.what() << "\n";
+    std::cerr << "vivv: " << terminal_safe(error.what()) << "\n";
     return exit_crash;
   } catch (const nlohmann::json::exception& error) {  // a report.json of the wrong shape
     return bad_input(std::string("malformed input: ") + error.what());

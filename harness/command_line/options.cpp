@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "cases/catalogue.hpp"
+#include "core/platform/text.hpp"
 #include "harness/command_line/command_line.hpp"
 
 namespace fs = std::filesystem;
@@ -38,7 +39,7 @@ namespace vivv::command_line {
 // would otherwise be echoed whole); exit 2.
 int bad_input(const std::string& message) {
   constexpr std::size_t limit = 2000;  // a message, not a dump: the first 2 KB say what is wrong
-  std::cerr << "vivv: " << message.substr(0, limit);
+  std::cerr << "vivv: " << terminal_safe(cut_at_character(message, limit));
   if (message.size() > limit) std::cerr << "... (" << message.size() - limit << " more characters)";
   std::cerr << "\n";
   return exit_bad_input;
@@ -195,7 +196,7 @@ int run_help(std::ostream& out) {
          "unexpectedly, 2 for bad input (nothing written; with --keep-going, a case refused while "
          "it "
          "runs).\n"
-         "  --out DIR          where the three files go (default vivv-report); checked before any "
+         "  --out DIR          where the four files go (default vivv-report); checked before any "
          "case runs\n"
          "  --digits D         MPFR working precision in decimal digits, 20 … "
       << maximum_digits

@@ -35,6 +35,7 @@
 #include "harness/run/run_case.hpp"
 #include "reports/report.hpp"
 #include "core/platform/signals.hpp"
+#include "core/platform/text.hpp"
 
 namespace fs = std::filesystem;
 
@@ -115,7 +116,8 @@ class ProgressPrinter {
   }
   void write(const std::string& message) const {
     const double elapsed = std::chrono::duration<double>(Clock::now() - started_).count();
-    std::cerr << "[" << std::fixed << std::setprecision(1) << elapsed << " s] " << message << "\n";
+    std::cerr << "[" << std::fixed << std::setprecision(1) << elapsed << " s] "
+              << terminal_safe(message) << "\n";
   }
 
   const Clock::time_point started_;
@@ -290,11 +292,13 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
           refusal_fd = ::open((work / (std::to_string(next) + ".refused")).c_str(),
                               O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
         try {
-          write_exclusively(work / (std::to_string(next) + ".json"), run_one(specs[next], options).dump());
+          write_exclusively(work / (std::to_string(next) + ".json"),
+                            run_one(specs[next], options)
+                                .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
         } catch (const std::exception& error) {
           code = bad_input(error.what());
           if (refusal_fd >= 0) {
-            const std::string message = std::string(error.what()).substr(0, 2000);
+            const std::string message = repaired_utf8(cut_at_character(error.what(), 2000));
             [[maybe_unused]] auto written = ::write(refusal_fd, message.data(), message.size());
           }
         }

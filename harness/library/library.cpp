@@ -97,7 +97,8 @@ std::vector<nlohmann::json> run_in_workers(const std::vector<CaseSpec>& specs,
       const pid_t pid = fork();
       if (pid == 0) {
         close(pipe_ends[0]);
-        const std::string text = run_in_worker(specs[next], options).dump();
+        const std::string text = run_in_worker(specs[next], options)
+                                     .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
         std::size_t written = 0;
         while (written < text.size()) {
           const ssize_t wrote = ::write(pipe_ends[1], text.data() + written, text.size() - written);

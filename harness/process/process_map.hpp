@@ -25,6 +25,7 @@
 
 #include "core/structure/energy.hpp"
 #include "core/maps/one_step_map.hpp"
+#include "core/platform/text.hpp"
 #include "harness/process/program.hpp"
 
 namespace vivv {
@@ -188,24 +189,24 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
       process.fail_answer(
           "expected \"" + std::string(key) + "\": an array of " + std::to_string(n) +
           " decimal strings (the system has " + std::to_string(n) + " coordinates), got " +
-          (answer.contains(key) ? answer[key].dump().substr(0, 200) : std::string("none")));
+          (answer.contains(key) ? quoted_text(answer[key].dump(), 200) : std::string("none")));
     const nlohmann::json& value = answer[key][static_cast<std::size_t>(i)];
     if (!value.is_string())
       process.fail_answer(
-          field + " is " + value.dump().substr(0, 100) +
+          field + " is " + quoted_text(value.dump(), 100) +
           ", not a decimal string (a JSON number would carry a double's 17 digits at most)");
     const std::string text = value.get<std::string>();
     const int significant = significant_digits(text);
     if (significant < 0)
-      process.fail_answer(field + " = \"" + text.substr(0, 100) + "\" is not a decimal number");
+      process.fail_answer(field + " = \"" + quoted_text(text, 100) + "\" is not a decimal number");
     if (significant > 0 && significant < digits)
-      process.fail_answer(field + " = \"" + text.substr(0, 100) + "\" has " +
+      process.fail_answer(field + " = \"" + quoted_text(text, 100) + "\" has " +
                           std::to_string(significant) +
                           " significant digits, and the greeting asked for " +
                           std::to_string(digits) + " (trailing zeros count: write them)");
     try {
       return from_decimal<S>(text);
-    } catch (const std::exception& error) {  // beyond the scalar's range
+    } catch (const std::exception& error) {  // beyond the scalar's range (float128 and MPFR too)
       process.fail_answer(field + ": " + error.what());
     }
   }

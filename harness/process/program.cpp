@@ -15,9 +15,13 @@
 #include <chrono>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <set>
 #include <sstream>
 
 #include "core/platform/signals.hpp"
+#include "core/platform/text.hpp"
 
 namespace fs = std::filesystem;
 
@@ -73,8 +77,10 @@ void prepare_signals() {
   ::signal(SIGPIPE, SIG_IGN);
 }
 
-// The program to exec: a name without '/' is looked up on PATH, a path is relative to the case
-// file's folder.
+// The program to exec, as an absolute path: a name without '/' is looked up on PATH (a relative
+// entry, or an empty one meaning ".", relative to vivv's working directory, where the lookup
+// found it), a path is relative to the case file's folder. The program starts in that folder, so
+// a relative path here would name another file there: the program found is the program run.
 std::string resolve_program(const std::string& program, const std::string& directory) {
   auto runnable = [](const fs::path& path) {
     std::error_code error;
@@ -84,19 +90,20 @@ std::string resolve_program(const std::string& program, const std::string& direc
     fs::path path =
         fs::path(program).is_absolute() ? fs::path(program) : fs::path(directory) / program;
     if (!runnable(path))
-      throw MapProcessError("the map program '" + program +
-                            "' is not an executable file (looked for " + path.string() + ")");
-    return path.string();
+      throw MapProcessError("the map program '" + quoted_text(program, 200) +
+                            "' is not an executable file (looked for " +
+                            quoted_text(path.string(), 400) + ")");
+    return fs::absolute(path).lexically_normal().string();
   }
   const char* path_variable = std::getenv("PATH");
   std::stringstream entries(path_variable ? path_variable : "/usr/local/bin:/usr/bin:/bin");
   std::string entry;
   while (std::getline(entries, entry, ':')) {
     const fs::path candidate = (entry.empty() ? fs::path(".") : fs::path(entry)) / program;
-    if (runnable(candidate)) return candidate.string();
+    if (runnable(candidate)) return fs::absolute(candidate).lexically_normal().string();
   }
-  throw MapProcessError("the map program '" + program + "' is not on PATH (" +
-                        std::string(path_variable ? path_variable : "unset") + ")");
+  throw MapProcessError("the map program '" + quoted_text(program, 200) + "' is not on PATH (" +
+                        quoted_text(path_variable ? path_variable : "unset", 400) + ")");
 }
 
 using Clock = std::chrono::steady_clock;
@@ -108,9 +115,46 @@ int milliseconds_until(Clock::time_point deadline) {
 }
 
 std::string shortened(const std::string& text, std::size_t at_most = 300) {
-  return text.size() <= at_most
-             ? text
-             : text.substr(0, at_most) + "… (" + std::to_string(text.size()) + " characters)";
+  return quoted_text(text, at_most);
+}
+
+// The processes of the machine as (pid, parent pid), from /proc/<pid>/stat ("pid (comm) state
+// ppid …"; comm may hold spaces and parentheses, so the fields are read after the last ')').
+std::vector<std::pair<pid_t, pid_t>> process_parents() {
+  std::vector<std::pair<pid_t, pid_t>> parents;
+  std::error_code error;
+  for (fs::directory_iterator entry("/proc", error), end; !error && entry != end;
+       entry.increment(error)) {
+    const std::string name = entry->path().filename().string();
+    if (name.empty() || !std::all_of(name.begin(), name.end(), ::isdigit)) continue;
+    std::ifstream in(entry->path() / "stat");
+    std::string stat((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto close = stat.rfind(')');
+    if (close == std::string::npos) continue;  // gone meanwhile
+    std::istringstream fields(stat.substr(close + 1));
+    char state = 0;
+    long ppid = 0;
+    if (fields >> state >> ppid) parents.emplace_back(std::stoi(name), static_cast<pid_t>(ppid));
+  }
+  return parents;
+}
+
+// Whether process `pid` has `token` ("NAME=value") in the environment it was started with.
+bool carries(pid_t pid, const std::string& token) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/environ", std::ios::binary);
+  std::string environment((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (std::size_t at = 0; at < environment.size();) {
+    const std::size_t end = std::min(environment.find('\0', at), environment.size());
+    if (environment.compare(at, end - at, token) == 0) return true;
+    at = end + 1;
+  }
+  return false;
+}
+
+// An {"error": …} answer's text: a string as it is, anything else as JSON (its depth bounded by
+// parse_answer, its length by the line's).
+std::string error_text(const nlohmann::json& error) {
+  return shortened(error.is_string() ? error.get<std::string>() : error.dump());
 }
 
 }  // namespace
@@ -137,6 +181,40 @@ void end_map_processes() noexcept {
     if (slot != 0) kill(-static_cast<pid_t>(slot), SIGKILL);
 }
 
+void end_program_tree(pid_t leader, const std::string& token) noexcept {
+  // Its group first (what a signal handler can do too), then the tree: the leader, every process
+  // below it by parent, and every child of vivv carrying the token — a process that left the
+  // group is reparented, when its parent ends, to vivv (the subreaper), with the token inherited.
+  // Each round kills what it finds and reaps the ones that are vivv's children; those below come
+  // to vivv in turn (dead, or killed next round), until a look finds none. A process that dropped
+  // the token and left the group while its parent lived is the one that escapes.
+  kill(-leader, SIGKILL);
+  try {
+    const pid_t self = getpid();
+    std::set<pid_t> killed{leader};
+    for (int round = 0; round < 1000; ++round) {
+      const auto parents = process_parents();
+      std::vector<pid_t> doomed;
+      for (const auto& [pid, parent] : parents)
+        if (parent == self && (killed.count(pid) || carries(pid, token))) doomed.push_back(pid);
+      if (doomed.empty()) return;
+      const std::size_t children = doomed.size();
+      for (std::size_t k = 0; k < doomed.size(); ++k)  // and the subtree below each
+        for (const auto& [pid, parent] : parents)
+          if (parent == doomed[k] && std::find(doomed.begin(), doomed.end(), pid) == doomed.end())
+            doomed.push_back(pid);
+      for (pid_t pid : doomed)
+        if (killed.insert(pid).second || pid == leader) kill(pid, SIGKILL);
+      for (std::size_t k = 0; k < children; ++k)
+        while (waitpid(doomed[k], nullptr, 0) < 0 && errno == EINTR) {
+        }
+    }
+  } catch (...) {  // out of memory while reading /proc: the group is ended at least
+  }
+  while (waitpid(leader, nullptr, WNOHANG) < 0 && errno == EINTR) {
+  }
+}
+
 MapProcess::MapProcess(Options options, const nlohmann::json& greeting)
     : options_(std::move(options)) {
   const std::string program = resolve_program(options_.command.front(), options_.directory);
@@ -144,6 +222,19 @@ MapProcess::MapProcess(Options options, const nlohmann::json& greeting)
   std::vector<char*> argv;
   for (auto& word : words) argv.push_back(word.data());
   argv.push_back(nullptr);
+  // Its environment: vivv's, with a token of this program that every descendant inherits, by
+  // which end_program_tree knows the ones that left its process group.
+  static long started = 0;
+  token_ = std::string(descendant_token) + "=" + std::to_string(getpid()) + "-" +
+           std::to_string(++started);
+  std::vector<std::string> environment{token_};
+  for (char** entry = environ; *entry; ++entry)
+    if (std::strncmp(*entry, descendant_token, std::strlen(descendant_token)) != 0 ||
+        (*entry)[std::strlen(descendant_token)] != '=')
+      environment.emplace_back(*entry);
+  std::vector<char*> envp;
+  for (auto& entry : environment) envp.push_back(entry.data());
+  envp.push_back(nullptr);
   // The program's input, its output, its stderr and the exec status; a pipe that cannot be made
   // (out of descriptors) closes the ones made before it.
   int pipes[4][2];
@@ -159,6 +250,10 @@ MapProcess::MapProcess(Options options, const nlohmann::json& greeting)
   int(&child_errors)[2] = pipes[2];
   int(&exec_status)[2] = pipes[3];
   prepare_signals();
+  // A process of the program that leaves its group (setsid, setpgid, a double fork) is
+  // reparented, once its parent ends, to vivv rather than to init: end_program_tree then
+  // finds it among vivv's children.
+  prctl(PR_SET_CHILD_SUBREAPER, 1);
   const pid_t parent = getpid();
   {
     // No signal between the fork and the group's registration: it would leave the program behind.
@@ -180,7 +275,7 @@ MapProcess::MapProcess(Options options, const nlohmann::json& greeting)
       sigprocmask(SIG_SETMASK, &none, nullptr);
       int error = 0;
       if (chdir(options_.directory.c_str()) == 0) {
-        execv(program.c_str(), argv.data());
+        execve(program.c_str(), argv.data(), envp.data());
       }
       error = errno;
       [[maybe_unused]] auto written = ::write(exec_status[1], &error, sizeof error);
@@ -209,7 +304,7 @@ MapProcess::MapProcess(Options options, const nlohmann::json& greeting)
   for (int fd : {input_, output_, errors_}) fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK);
   try {
     if (got > 0)
-      throw MapProcessError("cannot start " + name() + " in " + options_.directory + ": " +
+      throw MapProcessError("cannot start " + name() + " in " + repaired_utf8(options_.directory) + ": " +
                             std::strerror(exec_error));
     greet(greeting);
   } catch (...) {
@@ -222,16 +317,9 @@ void MapProcess::greet(const nlohmann::json& greeting) {
   const std::string what = "the greeting " + shortened(greeting.dump());
   send(greeting.dump(), what);
   const std::string line = receive(what);
-  nlohmann::json answer;
-  try {
-    answer = nlohmann::json::parse(line);
-  } catch (const nlohmann::json::exception&) {
-    fail(what, "it answered a line that is not JSON: " + shortened(line));
-  }
+  const nlohmann::json answer = parse_answer(line, what);
   if (answer.is_object() && answer.contains("error"))
-    fail(what, "it declined: " + shortened(answer["error"].is_string()
-                                               ? answer["error"].get<std::string>()
-                                               : answer["error"].dump()));
+    fail(what, "it declined: " + error_text(answer["error"]));
   if (!answer.is_object() || !answer.contains("protocol") || answer["protocol"] != map_protocol)
     fail(what, std::string("it answered ") + shortened(line) + ", not {\"protocol\": \"" +
                    map_protocol + "\"} (or {\"error\": …} to decline)");
@@ -254,11 +342,14 @@ void MapProcess::stop() noexcept {
     if (::poll(&wait_for, 1, 5) <= 0 || ::read(output_, discard, sizeof discard) <= 0)
       ::poll(nullptr, 0, 5);
   }
-  kill(-pid_, SIGKILL);  // the group: the leader is not reaped yet, so the id is still its own
-  int status = 0;
-  while (waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
-  }
+  // The group (the leader is not reaped yet, so the id is still its own) and every process
+  // below the program, in the group or not; the leader reaped.
+  end_program_tree(pid_, token_);
   unregister_group(pid_);
+  // No program left: orphans of other processes of this one go to init again, as before.
+  if (std::all_of(std::begin(running_groups), std::end(running_groups),
+                  [](sig_atomic_t slot) { return slot == 0; }))
+    prctl(PR_SET_CHILD_SUBREAPER, 0);
   close(output_);
   close(errors_);
   pid_ = -1;
@@ -276,33 +367,47 @@ nlohmann::json MapProcess::request(const nlohmann::json& message) {
   send(line, last_request_);
   const std::string reply = receive(last_request_);
   ++requests_;
-  nlohmann::json answer;
-  try {
-    answer = nlohmann::json::parse(reply);
-  } catch (const nlohmann::json::exception&) {
-    fail(last_request_, "it answered a line that is not JSON: " + shortened(reply));
-  }
+  nlohmann::json answer = parse_answer(reply, last_request_);
   if (!answer.is_object())
     fail(last_request_, "it answered " + shortened(reply) + ", not a JSON object");
   if (answer.contains("error"))
-    fail(last_request_,
-         "it answered with an error: " + shortened(answer["error"].is_string()
-                                                       ? answer["error"].get<std::string>()
-                                                       : answer["error"].dump()));
+    fail(last_request_, "it answered with an error: " + error_text(answer["error"]));
   return answer;
 }
 
+nlohmann::json MapProcess::parse_answer(const std::string& line, const std::string& request_name) {
+  // nlohmann parses iteratively, but destroying and printing a value recurse: a value nested
+  // 100 000 deep would end vivv by a stack overflow. The parser's callback sees each value's
+  // depth before it is built.
+  struct TooDeep {};
+  const auto bounded = [](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+    if (depth > maximum_answer_depth) throw TooDeep{};
+    return true;
+  };
+  try {
+    return nlohmann::json::parse(line, bounded);
+  } catch (const TooDeep&) {
+    fail(request_name, "it answered JSON nested deeper than " +
+                           std::to_string(maximum_answer_depth) +
+                           " levels (an answer is an object of arrays of decimal strings): " +
+                           shortened(line, 100));
+  } catch (const nlohmann::json::exception&) {
+    fail(request_name, "it answered a line that is not JSON: " + shortened(line));
+  }
+}
+
 void MapProcess::fail_answer(const std::string& what) const {
-  throw MapProcessError("the map program " + name() + " (in " + options_.directory + "), " +
-                        last_request_ + ": " + what);
+  throw MapProcessError("the map program " + name() + " (in " + repaired_utf8(options_.directory) +
+                        "), " + last_request_ + ": " + what);
 }
 
 void MapProcess::fail(const std::string& request_name, const std::string& what) {
   drain_stderr();
-  std::string message = "the map program " + name() + " (in " + options_.directory + "), " +
+  std::string message = "the map program " + name() + " (in " + repaired_utf8(options_.directory) + "), " +
                         request_name + ": " + what;
   if (!stderr_tail_.empty()) {
-    std::string tail = stderr_tail_;
+    // The kept tail may begin inside a character, and a program may write any bytes at all.
+    std::string tail = repaired_utf8(stderr_tail_);
     while (!tail.empty() && std::isspace(static_cast<unsigned char>(tail.back()))) tail.pop_back();
     message += "; its standard error ended with: " + tail;
   }

@@ -22,6 +22,10 @@ namespace vivv {
 // The protocol's name and version, in the greeting and in its answer.
 inline constexpr const char* map_protocol = "vivv-map/1";
 
+// The deepest JSON an answer may hold: an object of arrays of strings is 3 levels (a Jacobian's
+// array of arrays, 4); deeper answers are refused before they are built.
+inline constexpr int maximum_answer_depth = 8;
+
 // A program that cannot be started, declines, dies, hangs or breaks the protocol: bad input
 // (exit 2), the message naming the program and the request it failed.
 struct MapProcessError : std::runtime_error {
@@ -58,6 +62,9 @@ class MapProcess {
 
  private:
   void greet(const nlohmann::json& greeting);
+  // The answer `line` to `request_name` as JSON, nested at most maximum_answer_depth levels;
+  // fail() otherwise.
+  nlohmann::json parse_answer(const std::string& line, const std::string& request_name);
   // Closes its input, waits up to a second for it to end, kills its group and reaps it.
   void stop() noexcept;
   void send(const std::string& line, const std::string& request_name);
@@ -73,6 +80,7 @@ class MapProcess {
   std::string buffer_;                          // what was read of the answer line so far
   std::string stderr_tail_;  // the last 2000 characters the program wrote to its stderr
   std::string last_request_;
+  std::string token_;  // descendant_token=<vivv's pid>-<count>, in the program's environment
   long requests_ = 0;
 };
 
@@ -82,6 +90,17 @@ class MapProcess {
 // kinds are left as they are.
 void permit_process(CaseSpec& spec, bool allowed, double timeout_seconds,
                     const std::string& how_to_allow);
+
+// The environment variable that marks every process a map program starts (inherited; its value
+// names vivv's process and the program), for end_program_tree.
+inline constexpr const char* descendant_token = "VIVV_MAP_PROGRAM";
+
+// Kills the map program `leader` (a child of this process), its process group and every process
+// below it, and reaps them: also the helpers that left the group by setsid, setpgid or a double
+// fork, which reach this process — a child subreaper (PR_SET_CHILD_SUBREAPER) while programs
+// run — with `token` ("NAME=value") in their environment, and are killed with everything below
+// them, until none is left.
+void end_program_tree(pid_t leader, const std::string& token) noexcept;
 
 // Kills the process groups of every running map program (async-signal-safe: for a signal
 // handler, e.g. the --max-seconds budget's, that ends vivv).

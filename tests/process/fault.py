@@ -2,15 +2,22 @@
 """A map program for vivv's process protocol (vivv-map/1) that breaks it in the way its first
 argument names, after answering `good` requests properly (tests/process/check_process_maps.py).
 
-usage: fault.py MODE [GOOD] [MARKER]
+usage: fault.py MODE [GOOD] [MARKER [ESCAPE]]
 
 MODE: none (q' = q + h·p, p' = p), euler (explicit Euler on the harmonic oscillator), decline, hang-greeting, hang, exit, garbage,
 dimension, digits, number, padded (computes in double, writes D digits), short (asked for more than
-30 digits, computes in about D/2 + 3 and writes D), error, flood. With MARKER, it first starts a grandchild that sleeps
-for an hour with MARKER on its command line, so that a test can look for survivors.
+30 digits, computes in about D/2 + 3 and writes D), error, flood; and the hostile answers:
+deep-answer, deep-decline, deep-error (JSON nested 120 000 deep), stderr-bytes (bytes that are not
+UTF-8 on stderr, then exit 3), escape-codes (terminal escape sequences on stderr, then exit 3),
+cut-quote (a line that is not JSON, of two-byte characters, cut by vivv's quoting), overflow (a
+number beyond every scalar's range, 1e999999999, with the digits asked for).
+With MARKER, it first starts a grandchild that sleeps for an hour with MARKER on its command line,
+so that a test can look for survivors; ESCAPE says how that grandchild leaves the program's process
+group: child (it does not), setsid, setpgid (setpgid(0, 0)) or double-fork.
 """
 import decimal
 import json
+import os
 import subprocess
 import sys
 import time
@@ -18,7 +25,19 @@ import time
 mode = sys.argv[1]
 good = int(sys.argv[2]) if len(sys.argv) > 2 else 0
 if len(sys.argv) > 3:
-    subprocess.Popen([sys.executable, "-c", "import time; time.sleep(3600)", sys.argv[3]])
+    sleeper = [sys.executable, "-c", "import time; time.sleep(3600)", sys.argv[3]]
+    escape = sys.argv[4] if len(sys.argv) > 4 else "child"
+    if escape == "double-fork":
+        if os.fork() == 0:  # the intermediate: starts the sleeper and exits, orphaning it
+            if os.fork() == 0:
+                os.execv(sys.executable, sleeper)
+            os._exit(0)
+        os.wait()
+    else:
+        subprocess.Popen(sleeper, start_new_session=escape == "setsid",
+                         process_group=0 if escape == "setpgid" else None,
+                         stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL)
+deep = "[" * 120000 + "]" * 120000
 
 
 def send(message):
@@ -31,6 +50,9 @@ if mode == "hang-greeting":
     time.sleep(3600)
 if mode == "decline":
     send({"error": "this map steps the harmonic oscillator only"})
+    sys.exit(0)
+if mode == "deep-decline":
+    send('{"error": ' + deep + '}')
     sys.exit(0)
 send({"protocol": "vivv-map/1"})
 digits = greeting["digits"]
@@ -72,6 +94,20 @@ for count, line in enumerate(sys.stdin):
             answer = {"q": [f"{x:.{digits - 1}e}" for x in q], "p": write(p)}
         if mode == "error":
             answer = {"error": "step size too large"}
+        if mode == "deep-answer":
+            answer = '{"q": ' + deep + ', "p": ' + json.dumps(write(p)) + '}'
+        if mode == "deep-error":
+            answer = '{"error": ' + deep + '}'
+        if mode in ("stderr-bytes", "escape-codes"):
+            sys.stderr.flush()
+            sys.stderr.buffer.write(b"fault.py: \xff\xfe bytes \xe2\x82 cut" if mode == "stderr-bytes"
+                                    else b"fault.py: \x1b[2J\x1b[31mred\x1b]0;title\x07 \xc2\x9b")
+            sys.stderr.buffer.flush()
+            sys.exit(3)
+        if mode == "cut-quote":
+            answer = "x" + "\u00e9" * 400
+        if mode == "overflow":
+            answer = {"q": ["1." + "0" * (digits - 1) + "e999999999"], "p": write(p)}
         if mode == "flood":
             sys.stdout.write("x" * (3 << 20))
             sys.stdout.flush()

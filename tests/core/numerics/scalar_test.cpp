@@ -51,6 +51,36 @@ TEST(Scalar, SubnormalDecimalsAreReadAndOutOfRangeOnesNamed) {
   EXPECT_THROW(from_decimal<double>(" 1"), std::invalid_argument);
 }
 
+// float128 and MPFR round a decimal beyond their range to infinity or zero without a word; read
+// through from_decimal, such a number is out of range, named with the scalar, while the largest
+// and smallest in range and every form of zero are read.
+TEST(Scalar, QuadAndMpfrNameTheirRangeToo) {
+  for (const char* text : {"1e5000", "-1e5000", "1e-5000"}) {
+    try {
+      from_decimal<quad>(text);
+      ADD_FAILURE() << text << " was read in float128";
+    } catch (const std::out_of_range& error) {
+      EXPECT_NE(std::string(error.what()).find(text), std::string::npos) << error.what();
+      EXPECT_NE(std::string(error.what()).find("float128"), std::string::npos) << error.what();
+    }
+  }
+  EXPECT_GT(from_decimal<quad>("1e4900"), quad(0));
+  EXPECT_GT(from_decimal<quad>("1e-4960"), quad(0));  // subnormal
+  EXPECT_EQ(from_decimal<quad>("0.000e-99999"), quad(0));
+  PrecisionGuard guard(40);
+  for (const char* text : {"1e999999999", "-1.0e999999999", "1e-999999999"}) {
+    try {
+      from_decimal<mpfr_real>(text);
+      ADD_FAILURE() << text << " was read in MPFR";
+    } catch (const std::out_of_range& error) {
+      EXPECT_NE(std::string(error.what()).find(text), std::string::npos) << error.what();
+      EXPECT_NE(std::string(error.what()).find("mpfr"), std::string::npos) << error.what();
+    }
+  }
+  EXPECT_GT(from_decimal<mpfr_real>("1e300000000"), mpfr_real(1));  // within MPFR's exponent range
+  EXPECT_EQ(from_decimal<mpfr_real>("-0e5"), mpfr_real(0));
+}
+
 TEST(Scalar, EigenSolvesInQuadAndMpfr) {
   PrecisionGuard guard(50);
   Matrix<mpfr_real, 2, 2> a;
