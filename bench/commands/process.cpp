@@ -30,7 +30,9 @@ nlohmann::json measure(const char* scalar, const std::string& vivv_path) {
   MapProcess::Options options;
   options.command = {vivv_path, "map-echo"};
   options.directory = std::filesystem::current_path().string();
-  const ProcessMap<Pendulum<T>> map(system, options, nlohmann::json{{"name", "pendulum"}}, 1);
+  // The echo answers the state it is sent: an orbit of size |q| = 1.1.
+  const ProcessMap<Pendulum<T>> map(system, options, nlohmann::json{{"name", "pendulum"}}, 1,
+                                    x.q[0]);
   const double process_us = 1e6 * seconds_per_call(
                                       [&] {
                                         State<T, 1> next = map.step(x, h);

@@ -17,6 +17,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,6 +27,14 @@
 #include "core/lagrangian/state.hpp"
 
 namespace vivv {
+
+// A map's state far beyond the problem's scale: the run at step size `h` diverged, and vivv
+// stopped it before computing with the state (a huge but representable q makes cos(q) take
+// minutes). Claims record it as an inconclusive verdict at that h (harness/claims/claim.hpp).
+struct MapDiverged : std::runtime_error {
+  MapDiverged(const std::string& what, std::string h_) : std::runtime_error(what), h(std::move(h_)) {}
+  std::string h;  // the step size, a decimal
+};
 
 template <class T, int n>
 struct OneStepMap {

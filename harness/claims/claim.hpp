@@ -42,7 +42,19 @@ struct Claim {
   template <LagrangianSystem System>
   static ClaimResult evaluate(const CaseContext<System>& context) {
     ClaimResult claim = result();
-    Derived::measure(context, claim);
+    try {
+      Derived::measure(context, claim);
+    } catch (const MapDiverged& diverged) {
+      // The map left the problem's scale at one h: what was measured until then is not a verdict
+      // either way — an honest method may diverge at too large a step, a wrong one anywhere.
+      claim = result();
+      claim.verdict = "inconclusive";
+      claim.explanation = std::string("the run diverged at h = ") + diverged.h + ": " +
+                          diverged.what() +
+                          "; to decide: steps small enough for the map to stay within the "
+                          "problem's scale (larger step counts), or a map that does not diverge";
+      claim.evidence["divergence"] = {{"h", diverged.h}, {"message", diverged.what()}};
+    }
     return claim;
   }
 

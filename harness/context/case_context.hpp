@@ -362,7 +362,15 @@ struct CaseContext {
     options.command = d.command;
     options.directory = std::filesystem::absolute(spec.file).parent_path().string();
     options.timeout_seconds = d.process_timeout_seconds;
-    return std::make_shared<ProcessMap<System>>(system, options, system_json, d.declared_order);
+    // The orbit's size, by which an answer far beyond it is a divergence (ProcessMap).
+    using std::abs, std::max;
+    T orbit_size = 0;
+    for (const State<T, n>& x : {initial, final_state}) {
+      const Vector<T, n> p = momentum(system, x.q, x.w);
+      for (int i = 0; i < n; ++i) orbit_size = max({orbit_size, T(abs(x.q[i])), T(abs(p[i]))});
+    }
+    return std::make_shared<ProcessMap<System>>(system, options, system_json, d.declared_order,
+                                                orbit_size);
   }
 
   // h = T/N for every N of the sweep.

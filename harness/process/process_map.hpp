@@ -15,11 +15,17 @@
 // JᵀΩJ − Ω measures the map and not the differences. That holds only if the program really
 // computes with D₂ digits: the first Jacobian and every eighth are computed again at ten times
 // the width, and a change beyond ε·|J| ends the case naming the program (padded digits).
+//
+// An answer beyond 10^divergence_digits times the reference orbit's size is a divergence
+// (MapDiverged), thrown before vivv computes with it: each claim that ran the map at that h is
+// inconclusive (harness/claims/claim.hpp).
 #pragma once
 
 #include <algorithm>
+#include <iomanip>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -36,14 +42,24 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   static constexpr int n = System::dimension;
 
  public:
-  // `system_json`: the system as the case file gives it, every parameter filled in.
-  ProcessMap(System system, MapProcess::Options options, nlohmann::json system_json, int order)
+  // `system_json`: the system as the case file gives it, every parameter filled in;
+  // `orbit_size`: the reference orbit's size, max |q_i|, |p_i| over its states vivv knows.
+  ProcessMap(System system, MapProcess::Options options, nlohmann::json system_json, int order,
+             const T& orbit_size)
       : system_(std::move(system)),
         options_(std::move(options)),
         system_json_(std::move(system_json)),
         order_(order),
         digits_(round_trip_digits<T>()),
+        orbit_size_(orbit_size),
+        bound_(to_decimal<T>(scale_bound(orbit_size))),
         process_(start(digits_)) {}
+
+  // How far beyond the orbit's size an answer may lie before its run counts as diverged: 10^10.
+  // A method that errs by the orbit's size itself (order 0) stays 10 orders of magnitude below
+  // it; an answer beyond it is not followed, since vivv's work on a state — the inverse Legendre
+  // transform's Newton, cos(q) — can take minutes at |q| = 10^300000000.
+  static constexpr int divergence_digits = 10;
 
   std::string name() const override { return process_->name(); }
   int order() const override { return order_; }
@@ -67,6 +83,10 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     for (int i = 0; i < n; ++i) {
       next.q[i] = number<T>(*process_, answer, "q", i, digits_);
       p_next[i] = number<T>(*process_, answer, "p", i, digits_);
+    }
+    for (int i = 0; i < n; ++i) {
+      require_within_scale(*process_, next.q[i], "q", i, h);
+      require_within_scale(*process_, p_next[i], "p", i, h);
     }
     next.w = velocity_for_momentum(system_, next.q, p_next, x.w);
     last_ = {next, p_next};
@@ -107,6 +127,8 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
             for (int i = 0; i < n; ++i) {
               images[side][i] = number<R>(*fine_, answer, "q", i, fine_digits());
               images[side][n + i] = number<R>(*fine_, answer, "p", i, fine_digits());
+              require_within_scale(*fine_, images[side][i], "q", i, h);
+              require_within_scale(*fine_, images[side][n + i], "p", i, h);
             }
           }
           for (int i = 0; i < 2 * n; ++i)
@@ -165,6 +187,34 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   int difference_exponent() const { return (fine_digits() + 2) / 3; }
   int coarse_exponent() const { return (digits_ + 2) / 3; }
 
+  static T scale_bound(const T& orbit_size) {
+    using std::pow;
+    return T(pow(T(10), divergence_digits)) * orbit_size;
+  }
+
+  // h in the stream's shortest form with 6 significant digits: "0.125", "4".
+  static std::string shortest(const T& h) {
+    std::ostringstream out;
+    out << std::setprecision(6) << h;
+    return out.str();
+  }
+
+  // MapDiverged naming the program, the request, the field key[i] and the number when `value`,
+  // from `process`'s answer for a step of size h, lies beyond 10^divergence_digits times the
+  // orbit's size.
+  template <class S>
+  void require_within_scale(const MapProcess& process, const S& value, const char* key, int i,
+                            const T& h) const {
+    using std::abs;
+    if (abs(value) <= from_decimal<S>(bound_)) return;
+    throw MapDiverged(process.answering() + ": " + key + "[" + std::to_string(i) + "] = " +
+                          to_decimal<S>(value, 6) + " lies beyond 10^" +
+                          std::to_string(divergence_digits) + " times the reference orbit's size " +
+                          to_decimal<T>(orbit_size_, 3) +
+                          " (max |q_i|, |p_i| of its states at t = 0 and T)",
+                      shortest(h));
+  }
+
   // p = FL(q, w), taken from the program's last answer when x is the state it gave (a run's next
   // step starts there): no evaluation of L, and the p the program wrote rather than its round
   // trip through w.
@@ -216,6 +266,8 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   nlohmann::json system_json_;
   int order_;
   int digits_;
+  T orbit_size_;
+  std::string bound_;  // 10^divergence_digits times the orbit's size, a decimal
   std::unique_ptr<MapProcess> process_;
   mutable std::unique_ptr<MapProcess> fine_;  // started by the first Jacobian
   mutable long jacobians_ = 0;                // Jacobians computed so far

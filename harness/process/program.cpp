@@ -211,7 +211,7 @@ void end_program_tree(pid_t leader, const std::string& token) noexcept {
     }
   } catch (...) {  // out of memory while reading /proc: the group is ended at least
   }
-  while (waitpid(leader, nullptr, WNOHANG) < 0 && errno == EINTR) {
+  while (waitpid(leader, nullptr, 0) < 0 && errno == EINTR) {  // ECHILD once reaped above
   }
 }
 
@@ -396,9 +396,13 @@ nlohmann::json MapProcess::parse_answer(const std::string& line, const std::stri
   }
 }
 
+std::string MapProcess::answering() const {
+  return "the map program " + name() + " (in " + repaired_utf8(options_.directory) + "), " +
+         last_request_;
+}
+
 void MapProcess::fail_answer(const std::string& what) const {
-  throw MapProcessError("the map program " + name() + " (in " + repaired_utf8(options_.directory) +
-                        "), " + last_request_ + ": " + what);
+  throw MapProcessError(answering() + ": " + what);
 }
 
 void MapProcess::fail(const std::string& request_name, const std::string& what) {

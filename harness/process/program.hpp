@@ -59,6 +59,8 @@ class MapProcess {
   // A MapProcessError naming the program, the request just answered (at most 300 characters of
   // it) and `what` is wrong with its answer.
   [[noreturn]] void fail_answer(const std::string& what) const;
+  // "the map program 'X' (in DIR), request k {…}": who answered what, for a message.
+  std::string answering() const;
 
  private:
   void greet(const nlohmann::json& greeting);

@@ -1,16 +1,20 @@
 #!/usr/bin/env python3
-"""Corpus-driven fuzzing of what vivv reads: case files (with their formulas) and report.json.
+"""Corpus-driven fuzzing of what vivv reads: case files (with their formulas), report.json, and
+the answers of a map program speaking protocol vivv-map/1.
 
     fuzz_inputs.py VIVV CORPUS_DIR WORK_DIR [--mutations M] [--seed S]
     fuzz_inputs.py --self-test WORK_DIR
 
-CORPUS_DIR/cases/*.json are case files, CORPUS_DIR/reports/*.json report.json files (the
-corpus kept in the repository). Every corpus file, and M deterministic mutations of each
-(seeded: the same inputs every run), goes through `vivv run` (cases) or `vivv report`
-(reports). Each must end with exit 0, 1 or 2 — never a signal (abort, segfault), never a
-hang (each run has --max-seconds 5 and a 60 s limit) — and an exit 2 must say "vivv:" and
-leave no report.json. A failing input is saved in WORK_DIR/failures/ to be added to the
-corpus once fixed. Exit 0 when every input behaved, 1 otherwise.
+CORPUS_DIR/cases/*.json are case files, CORPUS_DIR/reports/*.json report.json files, and
+CORPUS_DIR/answers/*.jsonl a map program's answers, one line each (the greeting's first), with
+the case they answer beside them (*.case.json, whose command is replaced by the replay program
+tests/fuzz/replay_map.py serving the answers file). Every corpus file, and M deterministic
+mutations of each (seeded: the same inputs every run; an answers file has one of its lines
+mutated), goes through `vivv run` (cases and answers) or `vivv report` (reports). Each must end
+with exit 0, 1 or 2 — never a signal (abort, segfault), never a hang (each run has --max-seconds
+5, --process-timeout 5 and a 60 s limit) — and an exit 2 must say "vivv:" and leave no
+report.json. A failing input is saved in WORK_DIR/failures/ to be added to the corpus once
+fixed. Exit 0 when every input behaved, 1 otherwise.
 """
 import json
 import os
@@ -93,11 +97,36 @@ def mutations(text, count, rng):
             yield mutate_text(text, rng)
 
 
+def answer_mutations(text, count, rng):
+    """Answers files with one line mutated each: a structural edit of its JSON, a byte-level
+    edit, or bytes that are not UTF-8 (written through surrogateescape)."""
+    lines = text.split("\n")
+    for _ in range(count):
+        k = rng.randrange(len(lines))
+        edited = list(lines)
+        try:
+            parsed = json.loads(lines[k])
+        except ValueError:
+            parsed = None
+        choice = rng.random()
+        if parsed is not None and choice < 0.5:
+            edited[k] = json.dumps(mutate_json(parsed, rng))
+        elif choice < 0.9:
+            edited[k] = mutate_text(lines[k], rng)
+        else:
+            i = rng.randrange(len(lines[k]) + 1)
+            edited[k] = lines[k][:i] + "\udcff\udcfe\udce2\udc82" + lines[k][i:]
+        yield "\n".join(edited)
+
+
 def check(vivv, kind, path, work, exits=None):
     out = os.path.join(work, "out")
     shutil.rmtree(out, ignore_errors=True)
     if kind == "cases":
         command = [vivv, "run", path, "--out", out, "--quiet", "--max-seconds", "5"]
+    elif kind == "answers":
+        command = [vivv, "run", path, "--out", out, "--quiet", "--max-seconds", "5", "--allow-process",
+                   "--process-timeout", "5"]
     else:
         command = [vivv, "report", path, "--out", out]
     try:
@@ -165,21 +194,34 @@ def main(argv):
     os.makedirs(os.path.join(work, "failures"))
     rng = random.Random(seed)
     failures, inputs, exits = 0, 0, {}
-    for kind in ("cases", "reports"):
+    replay = os.path.join(os.path.dirname(os.path.abspath(__file__)), "replay_map.py")
+    for kind in ("cases", "reports", "answers"):
         directory = os.path.join(corpus, kind)
         for name in sorted(os.listdir(directory)):
+            if name.endswith(".case.json"):
+                continue  # the case an answers file answers
             text = open(os.path.join(directory, name), encoding="utf-8", errors="surrogateescape").read()
-            candidates = [text] + list(mutations(text, count, rng))
+            if kind == "answers":
+                candidates = [text] + list(answer_mutations(text, count, rng))
+                case = json.load(open(os.path.join(directory, name[: -len(".jsonl")] + ".case.json")))
+                answers = os.path.join(work, "answers.jsonl")
+                case["discretization"]["command"] = [sys.executable, replay, answers]
+            else:
+                candidates = [text] + list(mutations(text, count, rng))
             for k, candidate in enumerate(candidates):
                 path = os.path.join(work, "input.json")
+                if kind == "answers":
+                    with open(answers, "w", encoding="utf-8", errors="surrogateescape") as f:
+                        f.write(candidate)
+                    candidate = json.dumps(case)
                 with open(path, "w", encoding="utf-8", errors="surrogateescape") as f:
                     f.write(candidate)
                 inputs += 1
                 problem = check(vivv, kind, path, work, exits)
                 if problem:
                     failures += 1
-                    saved = os.path.join(work, "failures", "%s-%s-%d.json" % (kind, name[:-5], k))
-                    shutil.copy(path, saved)
+                    saved = os.path.join(work, "failures", "%s-%s-%d.json" % (kind, name.split(".")[0], k))
+                    shutil.copy(answers if kind == "answers" else path, saved)
                     print("%s: %s" % (saved, problem))
     print("fuzz: %d inputs (%d corpus files, %d mutations each, seed %d), exit codes %s, %d failures"
           % (inputs, inputs // (count + 1), count, seed,

@@ -15,15 +15,22 @@ usage: check_hostile_programs.py VIVV WORK_DIR VARIANT
       UTF-8 throughout, the bytes repaired (U+FFFD), the escapes kept in report.json and shown
       escaped on the terminal, the cut at a character boundary; without it, exit 2 with the
       message, UTF-8 and no raw control character on the terminal.
-  path-bytes
-      a case file in a folder, and an --out, whose names hold bytes that are not UTF-8: the run
-      ends with its verdicts and a report in UTF-8.
+  case-path-bytes, out-bytes
+      a case file in a folder, or an --out, whose name holds bytes that are not UTF-8: the run
+      ends with its verdicts and four files in UTF-8, the bytes shown as U+FFFD.
   relative-path-entry, empty-path-entry
       PATH holds a relative entry ("bin") or an empty one (the working directory): the program
       found there is the program run, not another of the same name in the case file's folder.
   overflow-float128, overflow-mpfr
       an answer of 1e999999999 (beyond float128's and MPFR's range, which would round it to
       infinity): exit 2 naming the program, the request, the field and the number.
+  huge-number
+      an answer of 1e300000000 in MPFR (in range; energy-behaviour once took cos(q) of it for
+      minutes): within a minute, global-order and energy-behaviour inconclusive, each naming the
+      divergence at that h with the program, the request, the field and the number; report written.
+  honest-divergence
+      explicit Euler on the oscillator with h = 4 (amplification 4.1 per step: 10^19 after 32
+      steps): global-order inconclusive, the run diverged at h = 4, not a refusal.
 """
 import json
 import os
@@ -33,6 +40,7 @@ import shutil
 import stat
 import subprocess
 import sys
+import time
 import uuid
 
 HERE = pathlib.Path(__file__).resolve().parent
@@ -124,9 +132,9 @@ def hostile_text(vivv, work, mode, problems):
            f"without --keep-going, a raw control character reached the terminal: {terminal[-400:]!r}", problems)
 
 
-def path_bytes(vivv, work, problems):
-    folder = os.fsencode(work) + b"/case-\xff\xfe-folder"
-    out_dir = os.fsencode(work) + b"/out-\xff"
+def path_bytes(vivv, work, which, problems):
+    folder = os.fsencode(work) + (b"/case-\xff\xfe-folder" if which == "case" else b"/case-folder")
+    out_dir = os.fsencode(work) + (b"/out-\xff" if which == "out" else b"/out")
     shutil.rmtree(folder, ignore_errors=True)
     shutil.rmtree(out_dir, ignore_errors=True)
     os.makedirs(folder)
@@ -151,8 +159,8 @@ def path_bytes(vivv, work, problems):
             report = json.loads(text)
             verdicts = [claim["verdict"] for c in report["cases"] for claim in c["claims"]]
             expect(verdicts == ["pass"], f"verdicts {verdicts}", problems)
-            expect("\ufffd" in json.dumps(report["run"], ensure_ascii=False),
-                   "the run block does not show the path's bytes as U+FFFD", problems)
+            expect("\ufffd" in json.dumps(report, ensure_ascii=False),
+                   "the report does not show the path's bytes as U+FFFD", problems)
 
 
 def path_entry(vivv, work, entry, problems):
@@ -189,6 +197,38 @@ def overflow(vivv, work, scalar, problems):
            problems)
 
 
+def divergence(vivv, work, variant, problems):
+    if variant == "huge-number":
+        case = write_case(work, variant, [str(FAULT), "huge", "3"], ("global-order", "energy-behaviour"))
+        spec = json.loads(case.read_text())
+        spec.update(scalar="mpfr", digits=30)
+        pattern = (r"the run diverged at h = 0\.125: the map program '.*fault\.py huge 3' \(in .*\), "
+                   r"request [45] \{.*\}: q\[0\] = 1\.0+e\+?300000000 lies beyond 10\^10 times the reference "
+                   r"orbit's size")
+    else:
+        case = write_case(work, variant, [str(FAULT), "euler"])
+        spec = json.loads(case.read_text())
+        spec.update(system={"name": "harmonic_oscillator"}, initial={"q": ["1"], "w": ["0"]}, T="128",
+                    steps=[32, 64, 128, 256])
+        pattern = r"the run diverged at h = 4: the map program .*: [qp]\[0\] = .* lies beyond 10\^10 times"
+    case.write_text(json.dumps(spec))
+    started = time.monotonic()
+    code, out, err = run(vivv, [str(case), "--allow-process", "--out", str(work / "out"), "--quiet"])
+    elapsed = time.monotonic() - started
+    text = (out + err).decode(errors="replace")
+    expect(code == 1, f"exit {code}: {text[-800:]}", problems)
+    expect(elapsed < 60, f"took {elapsed:.0f} s", problems)
+    report = work / "out" / "report.json"
+    if not report.exists():
+        problems.append("no report written")
+        return
+    for claim in json.loads(report.read_text())["cases"][0]["claims"]:
+        expect(claim["verdict"] == "inconclusive", f"{claim['id']}: {claim['verdict']}, expected inconclusive",
+               problems)
+        expect(re.search(pattern, claim["explanation"]),
+               f"{claim['id']}: the explanation does not match: {claim['explanation'][:600]}", problems)
+
+
 def main(argv):
     if len(argv) != 4:
         print(__doc__, file=sys.stderr)
@@ -204,10 +244,12 @@ def main(argv):
             deep(vivv, work, variant, problems)
         elif variant in ("stderr-bytes", "escape-codes", "cut-quote"):
             hostile_text(vivv, work, variant, problems)
-        elif variant == "path-bytes":
-            path_bytes(vivv, work, problems)
+        elif variant in ("case-path-bytes", "out-bytes"):
+            path_bytes(vivv, work, variant.split("-")[0], problems)
         elif variant in ("relative-path-entry", "empty-path-entry"):
             path_entry(vivv, work, variant.split("-")[0], problems)
+        elif variant in ("huge-number", "honest-divergence"):
+            divergence(vivv, work, variant, problems)
         elif variant.startswith("overflow-"):
             overflow(vivv, work, variant[len("overflow-"):], problems)
         else:

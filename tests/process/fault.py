@@ -10,7 +10,8 @@ dimension, digits, number, padded (computes in double, writes D digits), short (
 deep-answer, deep-decline, deep-error (JSON nested 120 000 deep), stderr-bytes (bytes that are not
 UTF-8 on stderr, then exit 3), escape-codes (terminal escape sequences on stderr, then exit 3),
 cut-quote (a line that is not JSON, of two-byte characters, cut by vivv's quoting), overflow (a
-number beyond every scalar's range, 1e999999999, with the digits asked for).
+number beyond every scalar's range, 1e999999999, with the digits asked for), huge (1e300000000,
+within MPFR's range, far beyond any orbit's).
 With MARKER, it first starts a grandchild that sleeps for an hour with MARKER on its command line,
 so that a test can look for survivors; ESCAPE says how that grandchild leaves the program's process
 group: child (it does not), setsid, setpgid (setpgid(0, 0)) or double-fork.
@@ -108,6 +109,8 @@ for count, line in enumerate(sys.stdin):
             answer = "x" + "\u00e9" * 400
         if mode == "overflow":
             answer = {"q": ["1." + "0" * (digits - 1) + "e999999999"], "p": write(p)}
+        if mode == "huge":
+            answer = {"q": ["1." + "0" * (digits - 1) + "e300000000"], "p": write(p)}
         if mode == "flood":
             sys.stdout.write("x" * (3 << 20))
             sys.stdout.flush()
