@@ -9,7 +9,7 @@ usage: check_hostile_programs.py VIVV WORK_DIR VARIANT
   deep-answer, deep-decline, deep-error
       JSON nested 120 000 deep in an answer, a refusal of the greeting and an error answer: exit 2
       naming the depth, never a crash.
-  stderr-bytes, escape-codes, cut-quote
+  stderr-bytes, terminal-escapes, cut-quote
       a program's stderr that is not UTF-8, one with terminal escape sequences, a line that
       vivv's quoting cuts inside a two-byte character: under --keep-going the report is written,
       UTF-8 throughout, the bytes repaired (U+FFFD), the escapes kept in report.json and shown
@@ -118,7 +118,7 @@ def hostile_text(vivv, work, mode, problems):
     message = json.loads(report_path.read_text())["refused"][0]["message"]
     if mode == "stderr-bytes":
         expect("fault.py: \ufffd\ufffd bytes \ufffd" in message, f"the bytes are not repaired: {message!r}", problems)
-    if mode == "escape-codes":
+    if mode == "terminal-escapes":
         expect("\x1b[2J\x1b[31mred" in message, f"report.json does not keep the text: {message!r}", problems)
         expect("\\x1b[2J" in terminal, f"the terminal does not show the escape: {terminal[-400:]!r}", problems)
     if mode == "cut-quote":
@@ -238,11 +238,11 @@ def main(argv):
     work.mkdir(parents=True)
     problems = []
     try:
-        if variant.startswith("escape-"):
+        if variant in ("escape-setsid", "escape-setpgid", "escape-double-fork"):
             escape(vivv, work, variant[len("escape-"):], problems)
         elif variant.startswith("deep-"):
             deep(vivv, work, variant, problems)
-        elif variant in ("stderr-bytes", "escape-codes", "cut-quote"):
+        elif variant in ("stderr-bytes", "terminal-escapes", "cut-quote"):
             hostile_text(vivv, work, variant, problems)
         elif variant in ("case-path-bytes", "out-bytes"):
             path_bytes(vivv, work, variant.split("-")[0], problems)

@@ -8,13 +8,14 @@ MODE: none (q' = q + h·p, p' = p), euler (explicit Euler on the harmonic oscill
 dimension, digits, number, padded (computes in double, writes D digits), short (asked for more than
 30 digits, computes in about D/2 + 3 and writes D), error, flood; and the hostile answers:
 deep-answer, deep-decline, deep-error (JSON nested 120 000 deep), stderr-bytes (bytes that are not
-UTF-8 on stderr, then exit 3), escape-codes (terminal escape sequences on stderr, then exit 3),
+UTF-8 on stderr, then exit 3), terminal-escapes (terminal escape sequences on stderr, then exit 3),
 cut-quote (a line that is not JSON, of two-byte characters, cut by vivv's quoting), overflow (a
 number beyond every scalar's range, 1e999999999, with the digits asked for), huge (1e300000000,
 within MPFR's range, far beyond any orbit's).
 With MARKER, it first starts a grandchild that sleeps for an hour with MARKER on its command line,
 so that a test can look for survivors; ESCAPE says how that grandchild leaves the program's process
-group: child (it does not), setsid, setpgid (setpgid(0, 0)) or double-fork.
+group: child (it does not), setsid, setpgid (setpgid(0, 0)) or double-fork (fork, setsid, fork,
+as a daemon starts).
 """
 import decimal
 import json
@@ -28,12 +29,15 @@ good = int(sys.argv[2]) if len(sys.argv) > 2 else 0
 if len(sys.argv) > 3:
     sleeper = [sys.executable, "-c", "import time; time.sleep(3600)", sys.argv[3]]
     escape = sys.argv[4] if len(sys.argv) > 4 else "child"
-    if escape == "double-fork":
-        if os.fork() == 0:  # the intermediate: starts the sleeper and exits, orphaning it
+    if escape == "double-fork":  # as a daemon starts: fork, setsid, fork, the middle one exits
+        if os.fork() == 0:
+            os.setsid()
             if os.fork() == 0:
                 os.execv(sys.executable, sleeper)
             os._exit(0)
         os.wait()
+    elif escape not in ("child", "setsid", "setpgid"):
+        sys.exit(f"fault.py: unknown ESCAPE {escape}")
     else:
         subprocess.Popen(sleeper, start_new_session=escape == "setsid",
                          process_group=0 if escape == "setpgid" else None,
@@ -99,7 +103,7 @@ for count, line in enumerate(sys.stdin):
             answer = '{"q": ' + deep + ', "p": ' + json.dumps(write(p)) + '}'
         if mode == "deep-error":
             answer = '{"error": ' + deep + '}'
-        if mode in ("stderr-bytes", "escape-codes"):
+        if mode in ("stderr-bytes", "terminal-escapes"):
             sys.stderr.flush()
             sys.stderr.buffer.write(b"fault.py: \xff\xfe bytes \xe2\x82 cut" if mode == "stderr-bytes"
                                     else b"fault.py: \x1b[2J\x1b[31mred\x1b]0;title\x07 \xc2\x9b")
