@@ -402,7 +402,13 @@ static void write_claims_table(std::ostream& out, const nlohmann::json& report) 
       const std::size_t decisive = claim.value("decisive_series", 0);
       if (claim.value("verdict", "") != "pass" && series.size() > 1 && decisive < series.size())
         note += (note.empty() ? "" : "; ") + series[decisive].value("label", std::string());
-      rows.push_back({c["name"], claim["id"], claim["verdict"],
+      // A claim that regressed against --baseline says so in the verdict column: it fails the run
+      // (exit 1, a JUnit failure), whatever its own verdict.
+      const bool regressed =
+          claim.value("baseline", nlohmann::json::object()).value("status", std::string()) ==
+          "regressed";
+      rows.push_back({c["name"], claim["id"],
+                      regressed ? std::string("regressed") : claim["verdict"].get<std::string>(),
                       order_text(claim.value("observed_order", nlohmann::json()), 2),
                       order_text(claim.value("predicted_order", nlohmann::json()), 0) +
                           (claim.value("exact_order", false) ? " (exact)" : ""),

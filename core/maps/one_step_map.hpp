@@ -36,6 +36,13 @@ struct MapDiverged : std::runtime_error {
   std::string h;  // the step size, a decimal
 };
 
+// A map whose Jacobian cannot be measured (a program that does not compute with the digits
+// the Jacobian's differences need): the claims that need it record the verdict "error" with
+// this message, and every other claim is judged (harness/claims/claim.hpp).
+struct UnmeasurableJacobian : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 template <class T, int n>
 struct OneStepMap {
   virtual ~OneStepMap() = default;

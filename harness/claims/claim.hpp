@@ -54,6 +54,12 @@ struct Claim {
                           "; to decide: steps small enough for the map to stay within the "
                           "problem's scale (larger step counts), or a map that does not diverge";
       claim.evidence["divergence"] = {{"h", diverged.h}, {"message", diverged.what()}};
+    } catch (const UnmeasurableJacobian& unmeasurable) {
+      // The measurement cannot be trusted: the claim errs, the case's other claims are judged.
+      claim = result();
+      claim.verdict = "error";
+      claim.explanation = unmeasurable.what();
+      claim.evidence["unmeasurable_jacobian"] = unmeasurable.what();
     }
     return claim;
   }

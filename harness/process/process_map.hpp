@@ -14,7 +14,8 @@
 // both about 10^(−2D₂/3) = 10^(−(4D + 20)/3), far below the working precision's 10^−D, so
 // JᵀΩJ − Ω measures the map and not the differences. That holds only if the program really
 // computes with D₂ digits: the first Jacobian and every eighth are computed again at ten times
-// the width, and a change beyond ε·|J| ends the case naming the program (padded digits).
+// the width, and a change beyond ε·|J| is UnmeasurableJacobian naming the program (padded
+// digits): symplecticity errs, the other claims are judged.
 //
 // An answer beyond 10^divergence_digits times the reference orbit's size is a divergence
 // (MapDiverged), thrown before vivv computes with it: each claim that ran the map at that h is
@@ -152,26 +153,19 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
             change = max(change, R(abs(narrow[j][i] - wide[j][i]))),
             coarse_change = max(coarse_change, R(abs(narrow[j][i] - coarse[j][i])));
         if (!(coarse_change <= pow(R(10), -((coarse_exponent() + 1) / 2)) * largest))
-          fine_->fail_answer(
-              "its Jacobian by central differences at width 10^-" +
-              std::to_string(difference_exponent()) + " differs by " +
-              to_decimal<R>(coarse_change, 3) + " from the one at width 10^-" +
-              std::to_string(coarse_exponent()) + " (|J| = " + to_decimal<R>(largest, 3) +
-              "): it does not compute with the " + std::to_string(fine_digits()) +
-              " digits its greeting asked for (a program that cannot should decline a "
-              "greeting with more digits than it has)");
+          unmeasurable("its Jacobian by central differences at width 10^-" +
+                       std::to_string(difference_exponent()) + " differs by " +
+                       to_decimal<R>(coarse_change, 3) + " from the one at width 10^-" +
+                       std::to_string(coarse_exponent()) + " (|J| = " + to_decimal<R>(largest, 3) +
+                       ")");
         if (!(change <= from_decimal<R>(epsilon_of_T) * largest))
-          fine_->fail_answer("its Jacobian by central differences changes by " +
-                             to_decimal<R>(change, 3) + " between widths 10^-" +
-                             std::to_string(difference_exponent()) + " and 10^-" +
-                             std::to_string(difference_exponent() - 1) +
-                             ", more than the working precision's epsilon " +
-                             to_decimal<R>(from_decimal<R>(epsilon_of_T), 3) +
-                             " times |J| = " + to_decimal<R>(largest, 3) +
-                             ": it does not compute with the " + std::to_string(fine_digits()) +
-                             " digits its greeting asked for (a program that cannot should decline "
-                             "a greeting with more "
-                             "digits than it has)");
+          unmeasurable("its Jacobian by central differences changes by " +
+                       to_decimal<R>(change, 3) + " between widths 10^-" +
+                       std::to_string(difference_exponent()) + " and 10^-" +
+                       std::to_string(difference_exponent() - 1) +
+                       ", more than the working precision's epsilon " +
+                       to_decimal<R>(from_decimal<R>(epsilon_of_T), 3) + " times |J| = " +
+                       to_decimal<R>(largest, 3));
       }
       for (int j = 0; j < 2 * n; ++j)
         for (int i = 0; i < 2 * n; ++i) columns[j][i] = to_decimal<R>(narrow[j][i]);
@@ -183,6 +177,22 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   }
 
  private:
+  // UnmeasurableJacobian: the second instance's differences show that it does not compute with
+  // the digits it was greeted with; `what` is the evidence. A finding about the program (its
+  // symplecticity cannot be judged), not bad input: every other claim is still judged.
+  [[noreturn]] void unmeasurable(const std::string& what) const {
+    throw UnmeasurableJacobian(
+        fine_->answering() + ": " + what + ": it does not compute with the " +
+        std::to_string(fine_digits()) + " digits its greeting asked for. Those digits, D2 = 2D + 10 " +
+        "for a working precision of D = " + std::to_string(digits_) +
+        ", let central differences of one step resolve the Jacobian far below the working "
+        "precision (their truncation and rounding both about 10^-(2 D2/3)); a program that "
+        "rounds to fewer digits, in one term or throughout, makes the differences measure its "
+        "rounding instead, so symplecticity cannot be judged. precision-leak measures how many "
+        "digits the program really carries; a program that cannot compute with D2 digits should "
+        "decline the greeting");
+  }
+
   int fine_digits() const { return 2 * digits_ + 10; }
   int difference_exponent() const { return (fine_digits() + 2) / 3; }
   int coarse_exponent() const { return (digits_ + 2) / 3; }

@@ -1,6 +1,8 @@
 """A map program that declines, hangs, dies or breaks protocol vivv-map/1 ends its case with exit
 2 naming the program and the request, within the timeout, with no report written and no
 process of its left behind — also when vivv is ended by SIGINT or SIGTERM, alone or under --jobs.
+One that pads its answers to the digits asked for is a finding instead: symplecticity errs
+naming the evidence, the other claims are judged, and the report is written (exit 1).
 
 usage: check_process_maps.py VIVV WORK_DIR
 
@@ -72,14 +74,20 @@ FAULTS = [
     ("digits", 0, r"request 1 .*q\[0\] = \"1\.1\d*\" has \d+ significant digits, and the greeting asked for 17"),
     ("number", 0, r"request 1 .*q\[0\] is 1\.1\d*, not a decimal string"),
     ("error", 5, r"request 6 .*it answered with an error: step size too large"),
+    ("flood", 0, r"request 1 .*a line longer than 1048576 characters"),
+]
+
+# Programs that do not compute with the digits their greeting asked for: a finding, not bad input.
+# symplecticity errs naming the evidence, global-order is judged, the report is written (exit 1).
+PADDED = [
     # Symplecticity's second instance, asked for 44 digits, computes in double: its Jacobian by
     # differences at width 10^-15 sees no change at all, unlike the one at the coarse width 10^-6.
-    ("padded", 0, r"request 12 .*at width 10\^-15 differs by .* from the one at width 10\^-6 .*does not "
-                  r"compute with the 44 digits"),
+    ("padded", r"request 12 .*at width 10\^-15 differs by .* from the one at width 10\^-6 .*does not "
+               r"compute with the 44 digits its greeting asked for\. Those digits, D2 = 2D \+ 10 for a "
+               r"working precision of D = 17.*precision-leak"),
     # ... computes with 25 of the 44 digits: the narrow Jacobian changes with the width beyond epsilon.
-    ("short", 0, r"request 12 .*changes by .* between widths 10\^-15 and 10\^-14, more than the working "
-                 r"precision's epsilon .*does not compute with the 44 digits"),
-    ("flood", 0, r"request 1 .*a line longer than 1048576 characters"),
+    ("short", r"request 12 .*changes by .* between widths 10\^-15 and 10\^-14, more than the working "
+              r"precision's epsilon .*does not compute with the 44 digits"),
 ]
 
 
@@ -121,10 +129,34 @@ def main(argv):
 
     for mode, good, pattern in FAULTS:
         marker = f"vivv-process-test-{uuid.uuid4().hex}"
-        claims = ("symplecticity",) if mode in ("padded", "short") else ("global-order",)
-        case = write_case(work, f"fault-{mode}", [str(FAULT), mode, str(good), marker], claims)
+        case = write_case(work, f"fault-{mode}", [str(FAULT), mode, str(good), marker])
         run([str(case), "--allow-process", "--process-timeout", str(TIMEOUT)], 2,
             r"fault\.py " + mode + r".* \(in .*\), " + pattern, mode, TIMEOUT + 10)
+        if not wait_for(lambda: not survivors(marker), 10):
+            problems.append(f"{mode}: processes of the map program survived vivv: {survivors(marker)}")
+
+    for mode, pattern in PADDED:
+        marker = f"vivv-process-test-{uuid.uuid4().hex}"
+        case = write_case(work, f"fault-{mode}", [str(FAULT), mode, "0", marker], ("global-order", "symplecticity"))
+        out = work / mode
+        shutil.rmtree(out, ignore_errors=True)
+        result = subprocess.run([vivv, "run", str(case), "--allow-process", "--process-timeout", str(TIMEOUT),
+                                 "--out", str(out), "--quiet"], capture_output=True, text=True, timeout=120)
+        verdicts = {}
+        if (out / "report.json").exists():
+            report = json.loads((out / "report.json").read_text())
+            verdicts = {claim["id"]: claim for claim in report["cases"][0]["claims"]}
+        if result.returncode != 1 or not (out / "junit.xml").exists():
+            problems.append(f"{mode}: exit {result.returncode} (expected 1, a report and junit.xml): "
+                            f"{(result.stdout + result.stderr).strip()[-500:]}")
+        elif verdicts.get("symplecticity", {}).get("verdict") != "error" or \
+                not re.search(r"fault\.py " + mode + r".* \(in .*\), " + pattern,
+                              verdicts["symplecticity"].get("explanation", "")):
+            problems.append(f"{mode}: symplecticity is not an error naming the evidence: "
+                            f"{json.dumps(verdicts.get('symplecticity'))[:800]}")
+        elif verdicts.get("global-order", {}).get("verdict") not in ("pass", "fail"):
+            problems.append(f"{mode}: global-order was not judged: {verdicts.get('global-order')}")
+        print(f"{mode}: exit {result.returncode}, symplecticity {verdicts.get('symplecticity', {}).get('verdict')}")
         if not wait_for(lambda: not survivors(marker), 10):
             problems.append(f"{mode}: processes of the map program survived vivv: {survivors(marker)}")
 
@@ -171,7 +203,8 @@ def main(argv):
     for problem in problems:
         print(problem, file=sys.stderr)
     if not problems:
-        print(f"{len(FAULTS)} faults, 4 signals and a budget: exit 2 or ended, no survivors")
+        print(f"{len(FAULTS)} faults, {len(PADDED)} padded programs, 4 signals and a budget: as expected, "
+              "no survivors")
     return 1 if problems else 0
 
 
