@@ -368,17 +368,19 @@ void write_exclusively(const std::string& path, const std::string& content) {
 }
 
 // The table and its notes as print_claims_table prints them, before the terminal's escaping.
-static void write_claims_table(std::ostream& out, const nlohmann::json& report);
+static void write_claims_table(std::ostream& out, const nlohmann::json& report, ConsoleDetail detail);
 
-void print_claims_table(std::ostream& terminal, const nlohmann::json& report) {
+void print_claims_table(std::ostream& terminal, const nlohmann::json& report, ConsoleDetail detail) {
   // Names, messages and a program's quoted output reach the console: control characters shown
   // escaped, never sent to the terminal as escape sequences (core/platform/text.hpp).
   std::ostringstream out;
-  write_claims_table(out, report);
+  write_claims_table(out, report, detail);
   terminal << terminal_safe(out.str());
 }
 
-static void write_claims_table(std::ostream& out, const nlohmann::json& report) {
+static void write_claims_table(std::ostream& out, const nlohmann::json& report, ConsoleDetail detail) {
+  const bool verbose = detail == ConsoleDetail::verbose;
+  int passes_left_out = 0;
   struct Row {
     std::string name, claim, verdict, observed, predicted, note;
   };
@@ -407,6 +409,10 @@ static void write_claims_table(std::ostream& out, const nlohmann::json& report) 
       const bool regressed =
           claim.value("baseline", nlohmann::json::object()).value("status", std::string()) ==
           "regressed";
+      if (!verbose && !regressed && claim.value("verdict", "") == "pass") {
+        ++passes_left_out;
+        continue;
+      }
       rows.push_back({c["name"], claim["id"],
                       regressed ? std::string("regressed") : claim["verdict"].get<std::string>(),
                       order_text(claim.value("observed_order", nlohmann::json()), 2),
@@ -423,6 +429,7 @@ static void write_claims_table(std::ostream& out, const nlohmann::json& report) 
     widths[3] = std::max(widths[3], row.observed.size());
     widths[4] = std::max(widths[4], row.predicted.size());
   }
+  if (rows.size() == 1) rows.clear();  // nothing but the header: no table
   for (const auto& row : rows) {
     std::ostringstream line;
     line << std::left << std::setw(widths[0] + 2) << row.name << std::setw(widths[1] + 2)
@@ -443,7 +450,11 @@ static void write_claims_table(std::ostream& out, const nlohmann::json& report) 
           << verdict << ": " << claim.value("explanation", std::string()) << "\n";
     }
   // What each pass could have caught: a pass is only as strong as its detection limit.
+  if (passes_left_out > 0)
+    out << passes_left_out << " passing claim" << (passes_left_out == 1 ? "" : "s")
+        << " not listed (--verbose lists each with its detection limit)\n";
   for (const auto& c : report["cases"])
+    if (verbose)
     for (const auto& claim : c["claims"]) {
       const std::string limit = claim.value("detection_limit", std::string());
       if (claim.value("verdict", "") != "pass" || limit.empty()) continue;

@@ -71,9 +71,16 @@ void write_atomically(const std::string& path, const std::string& content);
 // symbolic link (O_CREAT | O_EXCL | O_NOFOLLOW), mode 0600.
 void write_exclusively(const std::string& path, const std::string& content);
 
-// The aligned claims table: case, claim, verdict, observed and predicted order, with the
-// notes on what did not pass; control characters shown escaped (terminal_safe).
-void print_claims_table(std::ostream& out, const nlohmann::json& report);
+// How much of the run the console shows: the claims that did not pass, why, and the summary
+// (terse, vivv run's default), or every claim and each pass's detection limit too (verbose).
+enum class ConsoleDetail { terse, verbose };
+
+// The aligned claims table: case, claim, verdict, observed and predicted order — every claim, or
+// (terse) only those that did not pass, with a line counting the passes left out — then why each
+// claim that did not pass did not, what each pass could have caught (verbose), and the summary;
+// control characters shown escaped (terminal_safe).
+void print_claims_table(std::ostream& out, const nlohmann::json& report,
+                        ConsoleDetail detail = ConsoleDetail::verbose);
 
 // Every verdict a claim can have, in the order summaries list them.
 const std::vector<std::string>& verdict_names();

@@ -50,6 +50,9 @@ struct RunOptions {
   std::optional<Shard> shard;
   std::optional<int> max_seconds;  // --max-seconds: each case's budget of wall time
   bool progress = isatty(STDERR_FILENO);
+  // --verbose: the console lists every claim and each pass's detection limit, not only the
+  // claims that did not pass.
+  bool verbose = false;
   bool refine = false;
   // --keep-going: a case refused as bad input while it runs is recorded as refused, the other
   // cases keep their results, and the run still exits 2.
@@ -86,7 +89,7 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
 void check_output_directory(const std::string& out);
 // Writes DIR/report.json, report.html and junit.xml, prints the claims table;
 // the exit code of the verdicts.
-int write_reports(const std::string& out, const nlohmann::json& report);
+int write_reports(const std::string& out, const nlohmann::json& report, bool verbose);
 
 int command_run(const std::vector<std::string>& args, const std::string& command_line);
 int command_report(const std::vector<std::string>& args, const std::string& command_line);

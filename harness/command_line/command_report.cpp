@@ -42,6 +42,7 @@ namespace vivv::command_line {
 // schemas are bad input.
 int command_report(const std::vector<std::string>& args, const std::string& command_line) {
   std::string out;
+  bool verbose = false;
   std::vector<std::pair<std::string, nlohmann::json>> inputs;
   for (std::size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--out") {
@@ -50,6 +51,8 @@ int command_report(const std::vector<std::string>& args, const std::string& comm
       if (out.rfind("--", 0) == 0)
         throw BadInput("--out: expected a directory, got the option '" + out + "' (write ./" + out +
                        " for a directory of that name)");
+    } else if (args[i] == "--verbose") {
+      verbose = true;
     } else if (args[i].rfind("--", 0) == 0) {
       throw BadInput("unknown option '" + args[i] + "'");
     } else {
@@ -73,7 +76,7 @@ int command_report(const std::vector<std::string>& args, const std::string& comm
     throw BadInput("merging " + names + ": a field is missing or of an unexpected type (" +
                    error.what() + "): a damaged or edited report");
   }
-  return write_reports(out, merged);
+  return write_reports(out, merged, verbose);
 }
 
 }  // namespace vivv::command_line

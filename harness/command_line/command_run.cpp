@@ -87,9 +87,9 @@ void refuse_baseline_among_outputs(const std::string& baseline, const std::strin
 
 // Writes DIR/report.json, report.html, junit.xml and report.csv, prints the claims table;
 // the exit code of the verdicts.
-int write_reports(const std::string& out, const nlohmann::json& report) {
+int write_reports(const std::string& out, const nlohmann::json& report, bool verbose) {
   std::vector<std::string> paths = write_report_directory(out, report);
-  print_claims_table(std::cout, report);
+  print_claims_table(std::cout, report, verbose ? ConsoleDetail::verbose : ConsoleDetail::terse);
   std::cout << "report:";
   for (const auto& path : paths) std::cout << " " << path;
   std::cout << "\n";
@@ -178,7 +178,7 @@ int command_run(const std::vector<std::string>& args, const std::string& command
                               {"suite", suite},
                               {"positions", case_positions}};
   }
-  return write_reports(options.out, report);
+  return write_reports(options.out, report, options.verbose);
 }
 
 }  // namespace vivv::command_line

@@ -146,6 +146,7 @@ RunOptions parse_run_options(const std::vector<std::string>& args) {
     else if (arg == "--max-seconds") options.max_seconds = parse_integer(arg, value(), 1, 1000000);
     else if (arg == "--progress") options.progress = true;
     else if (arg == "--quiet") options.progress = false;
+    else if (arg == "--verbose") options.verbose = true;
     else if (arg == "--refine") options.refine = true;
     else if (arg == "--keep-going")
       options.keep_going = true;
@@ -176,8 +177,8 @@ int usage(std::ostream& out, int code) {
          "                [--max-seconds S] [--keep-going] [--baseline OLD/report.json "
          "[--baseline-tolerance X]]\n"
          "                [--allow-process [--process-timeout S]]\n"
-         "                [--progress|--quiet]\n"
-         "       vivv report REPORT.json [MORE.json ...] --out DIR\n"
+         "                [--progress|--quiet] [--verbose]\n"
+         "       vivv report REPORT.json [MORE.json ...] --out DIR [--verbose]\n"
          "       vivv list\n"
          "       vivv bench reference|del|process\n"
          "       vivv --version\n"
@@ -236,6 +237,8 @@ int run_help(std::ostream& out) {
          "(default 30)\n"
          "  --progress         progress lines on stderr (the default on a terminal)\n"
          "  --quiet            no progress lines\n"
+         "  --verbose          list every claim and each pass's detection limit (by default the\n"
+         "                     console lists the claims that did not pass, why, and the summary)\n"
          "  --help, -h         this text\n";
   return exit_pass;
 }
