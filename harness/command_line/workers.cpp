@@ -296,10 +296,14 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
                             run_one(specs[next], options)
                                 .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
         } catch (const std::exception& error) {
-          code = bad_input(error.what());
+          // Under --keep-going the refusal is recorded, and the console lists it with the refused
+          // cases: printed here as well, it appeared twice.
           if (refusal_fd >= 0) {
             const std::string message = repaired_utf8(cut_at_character(error.what(), 2000));
             [[maybe_unused]] auto written = ::write(refusal_fd, message.data(), message.size());
+            code = exit_bad_input;
+          } else {
+            code = bad_input(error.what());
           }
         }
         std::_Exit(code);
