@@ -86,6 +86,9 @@ def main(argv):
         problems.append("the fail badge does not link to the 'Needs attention' section")
     if "1 case refused (exit 2)" not in result.stdout:
         problems.append(f"the console does not count the refused case:\n{result.stdout}")
+    if entries and (result.stdout + result.stderr).count(entries[0]["message"][:80]) != 1:
+        problems.append("the refused case's message is not printed exactly once:\n"
+                        f"{result.stdout}{result.stderr}")
 
     for problem in problems:
         print(problem)
