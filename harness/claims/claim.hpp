@@ -142,6 +142,22 @@ struct PerStepCheck {
   Undecided undecided;
   std::vector<T> tolerances;
   T smallest_tolerance = 0, largest_tolerance = 0;
+  // The step that failed by the most (value / tolerance largest), and how many failed.
+  struct Worst {
+    T h = 0, value = 0, tolerance = 0;
+    int failed = 0;
+  };
+  Worst worst;
+
+  // Where the check failed, for a failing verdict's explanation: the largest excess, with its
+  // h and tolerance, and how many of the steps failed.
+  std::string worst_text() const {
+    if (worst.failed == 0) return "";
+    return "at h = " + format_scalar(worst.h, 4) + " it measured " + format_scalar(worst.value, 3) +
+           " against the tolerance " + format_scalar(worst.tolerance, 3) + " (" +
+           std::to_string(worst.failed) + " of " + std::to_string(values.size()) +
+           " step sizes beyond their tolerance; each in the per-step evidence)";
+  }
 
   // What the check could have caught: a value above the tolerance at its h.
   std::string detection_limit() const {
@@ -158,6 +174,12 @@ struct PerStepCheck {
   bool add(const T& h, const T& value, const T& tolerance, nlohmann::json row = nlohmann::json::object(),
            bool also = true) {
     const bool ok = value <= tolerance && also;
+    if (!ok) {
+      // Compared as value·tolerance' > value'·tolerance: no division by a zero tolerance.
+      if (worst.failed == 0 || value * worst.tolerance > worst.value * tolerance)
+        worst.h = h, worst.value = value, worst.tolerance = tolerance;
+      ++worst.failed;
+    }
     if (tolerances.empty() || tolerance < smallest_tolerance) smallest_tolerance = tolerance;
     if (tolerances.empty() || tolerance > largest_tolerance) largest_tolerance = tolerance;
     tolerances.push_back(tolerance);
@@ -179,7 +201,7 @@ struct PerStepCheck {
     Series series = sweep_series(context, label, values, std::nullopt);
     series.rule = "per-step-tolerance";
     series.holds = holds && scaling_failure.empty();
-    series.explanation = *series.holds ? held : !holds ? failed : scaling_failure;
+    series.explanation = *series.holds ? held : !holds ? failed + ": " + worst_text() : scaling_failure;
     if (!holds && !scaling_failure.empty()) series.explanation += "; and " + scaling_failure;
     if (!holds && scaling_failure.empty() && !undecided.why.empty()) {
       series.inconclusive = true;

@@ -50,7 +50,7 @@ struct ExactDiscretizationClaim : Claim<ExactDiscretizationClaim> {
                                        " × reference tolerance × max(1, |F_h(v)|)";
     check.conclude_claim(claim, context, "|F_h(v) − F^exact_h(v)| (exact discretization)",
                          "equal to the flow at every h, to the reference tolerance",
-                         "the exact discretization's evolution is not the flow (see per-step evidence)");
+                         "the exact discretization's evolution is not the flow");
   }
 };
 

@@ -122,7 +122,9 @@ struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {
       const std::string floors = "the defect's floor is " + coarse.floor + " with " +
                                  std::to_string(digits) + " digits and " + fine.floor + " with " +
                                  std::to_string(finer_digits) + " (it fell " + format_scalar(fall, 3) +
-                                 " digits; rounding predicts at least " + format_scalar(predicted_fall, 3) + ")";
+                                 " digits of the " + format_scalar(predicted_fall, 3) +
+                                 " rounding predicts; a floor that is rounding falls by at least half, " +
+                                 format_scalar(predicted_fall / 2, 3) + ")";
       if (floor_falls && kept.holds) {
         claim.verdict = "pass";
         claim.explanation = floors + ", and above it the defect keeps order " + std::to_string(r);

@@ -140,7 +140,7 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
         " u at two or more h falling like a power of h fail as truncation";
     check.conclude_claim(claim, context, "max_k |J_kᵀΩJ_k − Ω| (worst step against its tolerance)",
                          "symplectic to working precision at every step and every h, and so is the N-step map",
-                         "the (q, p) map is not symplectic (see per-step evidence)");
+                         "the (q, p) map is not symplectic");
     conclude_jacobian_checks(claim, jacobian_checks);
   }
 

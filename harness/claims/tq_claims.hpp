@@ -127,7 +127,7 @@ struct QxQTQEquivalenceClaim : Claim<QxQTQEquivalenceClaim> {
     }
     claim.evidence["mismatched_tq_steps"] = context.tq_past.has_value();
     check.conclude_claim(claim, context, "max_k |Psi(v_k) − (q_k, q_{k+1})|", "equal to working precision at every h",
-                         "the TQ and Q×Q evolutions differ (see per-step evidence)");
+                         "the TQ and Q×Q evolutions differ");
   }
 };
 

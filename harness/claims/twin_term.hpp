@@ -77,8 +77,7 @@ struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
     claim.evidence["formalism"] = context.tq ? "tq" : "qxq";
     check.conclude_claim(claim, context, context.tq ? "max_k |v_k(a) − v_k(0)|" : "max_k |q_k(a) − q_k(0)|",
                          "trajectories identical to working precision at every h",
-                         "the twin term changed the trajectory or the Legendre shift is not a·h^s "
-                         "(see per-step evidence)");
+                         "the twin term changed the trajectory or the Legendre shift is not a·h^s");
   }
 
  private:
