@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <chrono>
@@ -224,7 +225,7 @@ MapProcess::MapProcess(Options options, const nlohmann::json& greeting)
   argv.push_back(nullptr);
   // Its environment: vivv's, with a token of this program that every descendant inherits, by
   // which end_program_tree knows the ones that left its process group.
-  static long started = 0;
+  static std::atomic<long> started{0};  // programs started by this process (a library's threads)
   token_ = std::string(descendant_token) + "=" + std::to_string(getpid()) + "-" +
            std::to_string(++started);
   std::vector<std::string> environment{token_};
