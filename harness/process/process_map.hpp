@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -197,9 +198,12 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   int difference_exponent() const { return (fine_digits() + 2) / 3; }
   int coarse_exponent() const { return (digits_ + 2) / 3; }
 
+  // 10^divergence_digits times the orbit's size, or the largest finite T where that overflows
+  // (an orbit above about 10^298 in double): the bound must be a number.
   static T scale_bound(const T& orbit_size) {
-    using std::pow;
-    return T(pow(T(10), divergence_digits)) * orbit_size;
+    using std::isfinite, std::pow;
+    const T bound = T(pow(T(10), divergence_digits)) * orbit_size;
+    return isfinite(bound) ? bound : std::numeric_limits<T>::max();
   }
 
   // h in the stream's shortest form with 6 significant digits: "0.125", "4".
