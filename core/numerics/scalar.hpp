@@ -75,6 +75,17 @@ std::string scalar_name() {
   if constexpr (is_mpfr_v<T>) return "mpfr";
 }
 
+// The error for a decimal beyond T's range, naming the text, the scalar and its range.
+template <class T>
+std::out_of_range out_of_range_for(const std::string& text) {
+  std::ostringstream range;
+  range << std::setprecision(2) << std::numeric_limits<T>::denorm_min() << " and "
+        << std::numeric_limits<T>::max();
+  return std::out_of_range("'" + text.substr(0, 100) + (text.size() > 100 ? "…" : "") +
+                           "' is out of range for " + scalar_name<T>() +
+                           ": its magnitude must lie between " + range.str() + ", or be 0");
+}
+
 // Parses a decimal string exactly as T rounds it; never through a double.
 template <class T>
 T from_decimal(const std::string& text) {
@@ -89,12 +100,7 @@ T from_decimal(const std::string& text) {
     if (end != text.c_str() + text.size() || std::isspace(static_cast<unsigned char>(text.front())))
       throw std::invalid_argument("not a number: '" + text.substr(0, 100) + "'");
     if (errno == ERANGE && (std::isinf(value) || value == 0)) {
-      std::ostringstream range;
-      range << std::setprecision(2) << std::numeric_limits<T>::denorm_min() << " and "
-            << std::numeric_limits<T>::max();
-      throw std::out_of_range("'" + text.substr(0, 100) + (text.size() > 100 ? "…" : "") +
-                              "' is out of range for " + scalar_name<T>() +
-                              ": its magnitude must lie between " + range.str() + ", or be 0");
+      throw out_of_range_for<T>(text);
     }
     return value;
   } else {
@@ -112,12 +118,7 @@ T from_decimal(const std::string& text) {
     const bool nonzero =
         text.substr(0, mantissa_end).find_first_of("123456789") != std::string::npos;
     if (isinf(value) || (value == 0 && nonzero)) {
-      std::ostringstream range;
-      range << std::setprecision(2) << std::numeric_limits<T>::denorm_min() << " and "
-            << std::numeric_limits<T>::max();
-      throw std::out_of_range("'" + text.substr(0, 100) + (text.size() > 100 ? "…" : "") +
-                              "' is out of range for " + scalar_name<T>() +
-                              ": its magnitude must lie between " + range.str() + ", or be 0");
+      throw out_of_range_for<T>(text);
     }
     return value;
   }
