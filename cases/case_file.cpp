@@ -121,12 +121,12 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   system.finish();
 
   Reader initial = reader.object("initial");
-  spec.q = initial.decimals("q", spec.dimension);
-  spec.w = initial.decimals("w", spec.dimension);
+  spec.q = initial.numbers("q", spec.dimension);
+  spec.w = initial.numbers("w", spec.dimension);
   initial.finish();
   check_initial_state(spec, file);
 
-  spec.final_time = reader.decimal("T");
+  spec.final_time = reader.number("T");
   if (spec.final_time.front() == '-' || !(*decimal_value_of(spec.final_time) > 0))
     reader.fail("T", "expected a positive time, got \"" + spec.final_time + "\"");
 
@@ -242,6 +242,11 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
                                    "terms, not for discretization.kind \"" + spec.discretization.kind + "\"" +
                                    (spec.discretization.twin ? " with a twin term" : ""));
     if (id == "precision-leak") {
+      if (!spec.discretization.process_precision.empty())
+        throw CaseError(file, where, "precision-leak runs the program again at twice the digits, and "
+                                     "discretization.precision \"" + spec.discretization.process_precision +
+                                     "\" says it computes in double only: leave precision-leak out, or run a "
+                                     "program that computes with the digits it is asked for");
       if (spec.scalar != "mpfr")
         throw CaseError(file, where, "precision-leak runs the case again at twice its digits: it needs \"scalar\": "
                                      "\"mpfr\", not \"" + spec.scalar + "\"");
@@ -332,6 +337,7 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   }
   reader.finish();
   spec.decimals = reader.decimals();
+  spec.written = reader.written();
   check_precision_options(spec, std::nullopt, std::nullopt);
   return spec;
 }
@@ -394,6 +400,10 @@ void check_precision_options(const CaseSpec& spec, const std::optional<std::stri
                 "): its magnitude must lie between 4.9e-324 and 1.8e308, or be 0; long double, "
                 "float128 and mpfr reach about 1e±4900");
     }
+  if (spec.discretization.process_precision == "double" && effective != "double")
+    throw CaseError(spec.file, scalar ? "--scalar" : "scalar",
+                    "discretization.precision \"double\" says the program computes in double, so the "
+                    "case runs in double, not in " + option);
   const bool leak =
       std::find(spec.claims.begin(), spec.claims.end(), "precision-leak") != spec.claims.end();
   if (leak && effective != "mpfr")

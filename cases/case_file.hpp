@@ -74,6 +74,11 @@ struct DiscretizationSpec {
   // kind "process": a one-step map in another program, spoken to over its standard input and
   // output (protocol vivv-map/1, docs/process-protocol.md); its order is declared_order.
   std::vector<std::string> command;  // the program and its arguments, never through a shell
+  // "precision": "double" — the program computes in IEEE double (a NumPy or C integrator): the
+  // case runs in double, every instance of the program is greeted with 17 digits, and
+  // symplecticity differentiates it at widths a double resolves. Empty: the program computes
+  // with the digits each greeting asks for.
+  std::string process_precision;
   // Set by the run, not the case file: whether this run may start programs named in case files
   // (vivv run --allow-process), and how long one may take to answer (--process-timeout).
   bool process_allowed = false;
@@ -119,6 +124,9 @@ struct CaseSpec {
   // Every decimal the case file gives, with its field: checked against the range of the scalar
   // the case runs in (check_precision_options).
   std::vector<std::pair<std::string, std::string>> decimals;
+  // The numbers written as formulas ("initial.q[0]": "pi/4"), as written; their decimals, of
+  // maximum_digits + 10 digits, are in q, w, final_time and parameters.
+  std::vector<std::pair<std::string, std::string>> written;
 };
 
 // Reads and validates a case file; throws CaseError (also for a path that is

@@ -3,6 +3,7 @@
 #include <cctype>
 
 #include "cases/formula_parser.hpp"
+#include "core/numerics/scalar.hpp"
 
 namespace vivv::case_reading {
 
@@ -115,6 +116,45 @@ std::shared_ptr<const FormulaNode> read_formula(Reader& reader, const std::strin
   } catch (const FormulaError& error) {
     reader.fail(key, describe_formula_error(text, error));
   }
+}
+
+}  // namespace vivv::case_reading
+
+namespace vivv::case_reading {
+
+std::string Reader::number_value(const nlohmann::json& value, const std::string& where) const {
+  // Text of digits, points, signs and exponents alone is a decimal, or a malformed one ("+2",
+  // ".5"), which decimal_value names as such; anything else is read as a formula.
+  static const std::regex numeral(R"([-+0-9.eE]+)");
+  if (!value.is_string() || std::regex_match(value.get<std::string>(), numeral))
+    return decimal_value(value, where);
+  const std::string text = value.get<std::string>();
+  const std::string expected =
+      "expected a decimal number such as \"-0.5\" or \"1.25e-3\", or a formula of numbers and pi "
+      "such as \"pi/4\" or \"1/3\"";
+  if (text.size() > longest_echo)
+    throw CaseError(file_, where, expected + ", got " + std::to_string(text.size()) + " characters");
+  std::string decimal;
+  try {
+    const FormulaNode tree = parse_formula(text);
+    PrecisionGuard guard(maximum_digits + 20);
+    const FormulaScope<mpfr_real, mpfr_real> scope;  // no names: numbers, pi and functions
+    const FormulaValue<mpfr_real> result = interpret(tree, scope);
+    if (result.is_vector || result.components.size() != 1)
+      throw FormulaError(tree.position, "expected a number, got a vector");
+    using std::isfinite;
+    if (!isfinite(result.components[0]))
+      throw FormulaError(tree.position, "the value is not a finite number");
+    decimal = to_decimal<mpfr_real>(result.components[0], maximum_digits + 10);
+  } catch (const FormulaError& error) {
+    throw CaseError(file_, where, expected + ": " + describe_formula_error(text, error));
+  }
+  if (!decimal_value_of(decimal))
+    throw CaseError(file_, where, "\"" + echo(text) + "\" is " + decimal.substr(0, 20) +
+                                      "…, outside the range vivv accepts (about 1e-4900 to 1e4900)");
+  decimals_->emplace_back(where, decimal);
+  written_->emplace_back(where, text);
+  return decimal;
 }
 
 }  // namespace vivv::case_reading

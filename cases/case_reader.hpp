@@ -55,15 +55,19 @@ class Reader {
  public:
   using Decimals = std::vector<std::pair<std::string, std::string>>;
   Reader(const nlohmann::json& json, std::string file, std::string path,
-         std::shared_ptr<Decimals> decimals = std::make_shared<Decimals>())
+         std::shared_ptr<Decimals> decimals = std::make_shared<Decimals>(),
+         std::shared_ptr<Decimals> written = std::make_shared<Decimals>())
       : json_(json),
         file_(std::move(file)),
         path_(std::move(path)),
-        decimals_(std::move(decimals)) {
+        decimals_(std::move(decimals)),
+        written_(std::move(written)) {
     if (!json_.is_object()) fail("", "expected a JSON object");
   }
   // Every decimal read so far by this reader and those it made, with its field.
   const Decimals& decimals() const { return *decimals_; }
+  // Every number written as a formula ("pi/4", "1/3") so far, with its field and its text.
+  const Decimals& written() const { return *written_; }
 
   [[noreturn]] void fail(const std::string& key, const std::string& message) const {
     throw CaseError(file_, field(key), message);
@@ -90,7 +94,7 @@ class Reader {
     }
     return json_.at(key);
   }
-  Reader object(const std::string& key) { return Reader(get(key), file_, field(key), decimals_); }
+  Reader object(const std::string& key) { return Reader(get(key), file_, field(key), decimals_, written_); }
 
   // A number written as a decimal string, e.g. "1.1" or "-2.5e-3".
   std::string decimal(const std::string& key) { return decimal_value(get(key), field(key)); }
@@ -111,6 +115,23 @@ class Reader {
                                     "(about 1e-4900 to 1e4900)");
     decimals_->emplace_back(where, text);
     return text;
+  }
+  // A number written as a decimal string ("1.1") or as a formula of numbers and pi ("pi/4",
+  // "1/3", "2*pi - sqrt(2)/10"; the formula syntax without names): the formula is evaluated in
+  // MPFR at maximum_digits + 20 digits and returned as a decimal of maximum_digits + 10
+  // significant digits, which holds any working precision a run may ask for; its text as
+  // written is kept (written()).
+  std::string number(const std::string& key) { return number_value(get(key), field(key)); }
+  std::string number_value(const nlohmann::json& value, const std::string& where) const;
+  std::vector<std::string> numbers(const std::string& key, std::size_t size) {
+    const auto& value = get(key);
+    if (!value.is_array() || value.size() != size)
+      fail(key, "expected an array of " + std::to_string(size) +
+                    " decimal strings (or formulas such as \"pi/4\"), got " + echo(value));
+    std::vector<std::string> out;
+    for (std::size_t i = 0; i < size; ++i)
+      out.push_back(number_value(value[i], field(key) + "[" + std::to_string(i) + "]"));
+    return out;
   }
   // A number in [0, 1] written as a decimal string or a fraction "p/q".
   std::string fraction(const std::string& key) {
@@ -180,7 +201,7 @@ class Reader {
  private:
   const nlohmann::json& json_;
   std::string file_, path_;
-  std::shared_ptr<Decimals> decimals_;
+  std::shared_ptr<Decimals> decimals_, written_;
   std::set<std::string> known_;
 };
 

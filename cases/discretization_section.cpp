@@ -73,6 +73,7 @@ DiscretizationSpec read_discretization(Reader reader, int dimension,
                    : "expected an argument of at most 4096 characters without NUL");
       spec.command.push_back(word);
     }
+    if (reader.has("precision")) spec.process_precision = reader.one_of("precision", {"double"});
     spec.declared_order =
         reader.integer("order", 1, 64,
                        "the order its author states, |Phi_h - F_h| = O(h^(order+1)), "

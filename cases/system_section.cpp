@@ -54,7 +54,7 @@ void read_formula_system(Reader& system, CaseSpec& spec) {
     Reader values = system.object("params");
     for (const auto& [name, value] : params.items()) {
       claim_name(name, system.field("params") + "." + name, "a parameter");
-      spec.parameters.emplace_back(name, values.decimal(name));
+      spec.parameters.emplace_back(name, values.number(name));
     }
     values.finish();
   }
@@ -117,7 +117,7 @@ std::vector<std::pair<std::string, std::string>> read_parameters(
   if (!system.has("params")) return values;
   Reader params = system.object("params");
   for (auto& [name, value] : values)
-    if (params.has(name)) value = params.decimal(name);
+    if (params.has(name)) value = params.number(name);
   params.finish();
   return values;
 }

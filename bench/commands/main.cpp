@@ -3,7 +3,7 @@
 // table and, last, one JSON object of ratios measured in one run.
 //
 //   vivv-bench reference|del|process
-//   vivv-bench map-echo     the echo program `process` talks to (protocol vivv-map/1)
+//   vivv-bench map-echo [--jacobian]   the echo program `process` talks to (protocol vivv-map/1)
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -22,6 +22,8 @@ int main(int argc, char** argv) {
       return vivv::run_process_benchmark(std::cout,
                                          std::filesystem::read_symlink("/proc/self/exe").string());
     if (args.size() == 1 && args[0] == "map-echo") return vivv::run_map_echo();
+    if (args.size() == 2 && args[0] == "map-echo" && args[1] == "--jacobian")
+      return vivv::run_map_echo(true);
   } catch (const std::exception& error) {
     std::cerr << "vivv-bench: " << error.what() << "\n";
     return 2;

@@ -10,6 +10,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "cases/systems.hpp"
 #include "core/qxq/del_evolution.hpp"
@@ -70,6 +71,47 @@ nlohmann::json measure(const char* scalar, const std::string& vivv_path) {
           {"within_target", process_us <= target_microseconds}};
 }
 
+// One Jacobian of symplecticity's (ProcessMap::jacobian, the first of every eight checked as the
+// claim checks it) from an echo that sends its own (extension "jacobian"), against one by central
+// differences (a second instance at 2D + 10 digits; for a double program, the same instance), in
+// microseconds, for a system of `n` coordinates (the echo's map is the identity: the programs'
+// own work is nil, and the figure is vivv's and the protocol's).
+template <class System>
+nlohmann::json measure_jacobians(const char* scalar, const std::string& vivv_path,
+                                 const System& system, const nlohmann::json& system_json) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  const T h = T(1) / 10;
+  State<T, n> x;
+  for (int i = 0; i < n; ++i) x.q[i] = T(11 + i) / 10, x.w[i] = T(1) / 4;
+  MapProcess::Options options;
+  options.directory = std::filesystem::current_path().string();
+  auto microseconds = [&](std::vector<std::string> command, bool double_program) {
+    options.command = std::move(command);
+    const ProcessMap<System> map(system, options, system_json, 1, T(2), double_program);
+    return 1e6 * seconds_per_call(
+                     [&] {
+                       auto jacobian = map.jacobian(x, h);
+                       keep(jacobian);
+                     },
+                     0.3);
+  };
+  const double own_us = microseconds({vivv_path, "map-echo", "--jacobian"}, false);
+  const double differences_us = microseconds({vivv_path, "map-echo"}, false);
+  nlohmann::json row = {{"scalar", scalar},
+                        {"dimension", n},
+                        {"digits", round_trip_digits<T>()},
+                        {"own_jacobian_us", own_us},
+                        {"differences_us", differences_us},
+                        {"speedup", differences_us / own_us}};
+  if (std::string(scalar) == "double") {
+    const double double_us = microseconds({vivv_path, "map-echo"}, true);
+    row["double_program_differences_us"] = double_us;
+    row["double_program_speedup"] = double_us / own_us;
+  }
+  return row;
+}
+
 }  // namespace
 
 int run_process_benchmark(std::ostream& out, const std::string& vivv_path) {
@@ -95,19 +137,94 @@ int run_process_benchmark(std::ostream& out, const std::string& vivv_path) {
     out << line;
   }
   out << "ratio = process step / DEL step; target: a process step <= " << target_microseconds
-      << " us\n";
-  out << nlohmann::json{{"target_microseconds", target_microseconds}, {"rows", rows}}.dump()
+      << " us\n\n";
+  // symplecticity's Jacobians: a program's own against differences of its steps.
+  nlohmann::json jacobians = nlohmann::json::array();
+  jacobians.push_back(measure_jacobians("double", vivv_path, Pendulum<double>(),
+                                        nlohmann::json{{"name", "pendulum"}}));
+  jacobians.push_back(measure_jacobians("double", vivv_path, Kepler<double>(),
+                                        nlohmann::json{{"name", "kepler"}}));
+  {
+    PrecisionGuard guard(40);
+    jacobians.push_back(measure_jacobians("mpfr", vivv_path, Pendulum<mpfr_real>(),
+                                          nlohmann::json{{"name", "pendulum"}}));
+    jacobians.push_back(measure_jacobians("mpfr", vivv_path, Kepler<mpfr_real>(),
+                                          nlohmann::json{{"name", "kepler"}}));
+  }
+  out << "one Jacobian for symplecticity from a program that sends its own (extension "
+         "\"jacobian\"), against\n"
+         "one by central differences of its steps (a second instance at 2D + 10 digits; "
+         "\"precision\": \"double\": the same\n"
+         "instance), the echo program's identity map; the first of every 8 checked as the claim "
+         "checks it\n";
+  std::snprintf(line, sizeof line, "%-7s %3s %7s %12s %18s %8s %22s\n", "scalar", "n", "digits",
+                "own (us)", "differences (us)", "speedup", "double program (us)");
+  out << line;
+  for (const auto& row : jacobians) {
+    std::snprintf(line, sizeof line, "%-7s %3d %7d %12.1f %18.1f %8.2f", row["scalar"].get<std::string>().c_str(),
+                  row["dimension"].get<int>(), row["digits"].get<int>(), row["own_jacobian_us"].get<double>(),
+                  row["differences_us"].get<double>(), row["speedup"].get<double>());
+    out << line;
+    if (row.contains("double_program_differences_us")) {
+      std::snprintf(line, sizeof line, " %14.1f (x%.2f)", row["double_program_differences_us"].get<double>(),
+                    row["double_program_speedup"].get<double>());
+      out << line;
+    }
+    out << "\n";
+  }
+  out << "speedup = differences / own; a real program's own work per request multiplies both\n";
+  out << nlohmann::json{{"target_microseconds", target_microseconds},
+                        {"rows", rows},
+                        {"jacobians", jacobians}}
+             .dump()
       << "\n";
   return 0;
 }
 
-int run_map_echo() {
+namespace {
+
+// `text` with at least `digits` significant digits: zeros appended to its mantissa (exact).
+std::string padded(const std::string& text, int digits) {
+  const std::size_t exponent = std::min(text.find_first_of("eE"), text.size());
+  std::string mantissa = text.substr(0, exponent);
+  int significant = 0;
+  bool leading = true;
+  for (char c : mantissa)
+    if (c >= '0' && c <= '9' && !(leading && c == '0')) ++significant, leading = false;
+  if (significant == 0) return text;  // zero
+  if (mantissa.find('.') == std::string::npos) mantissa += '.';
+  return mantissa + std::string(static_cast<std::size_t>(std::max(0, digits - significant)), '0') +
+         text.substr(exponent);
+}
+
+}  // namespace
+
+int run_map_echo(bool send_jacobian) {
   std::string line;
   if (!std::getline(std::cin, line)) return 0;
-  std::cout << "{\"protocol\": \"" << map_protocol << "\"}" << std::endl;
+  const nlohmann::json greeting = nlohmann::json::parse(line);
+  const int digits = greeting.value("digits", 17), n = greeting.value("dimension", 1);
+  const bool offered = greeting.contains("extensions") && greeting["extensions"].is_array() &&
+                       std::find(greeting["extensions"].begin(), greeting["extensions"].end(),
+                                 "jacobian") != greeting["extensions"].end();
+  send_jacobian = send_jacobian && offered;
+  nlohmann::json answer = {{"protocol", map_protocol}};
+  if (send_jacobian) answer["extensions"] = {"jacobian"};
+  std::cout << answer.dump() << std::endl;
+  // The identity's Jacobian, written with the digits asked for.
+  nlohmann::json identity = nlohmann::json::array();
+  for (int i = 0; i < 2 * n; ++i) {
+    nlohmann::json row = nlohmann::json::array();
+    for (int j = 0; j < 2 * n; ++j) row.push_back(i == j ? padded("1", digits) : "0");
+    identity.push_back(row);
+  }
   while (std::getline(std::cin, line)) {
     const nlohmann::json request = nlohmann::json::parse(line);
-    std::cout << nlohmann::json{{"q", request["q"]}, {"p", request["p"]}}.dump() << std::endl;
+    nlohmann::json reply = {{"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
+    for (const char* key : {"q", "p"})
+      for (const auto& value : request[key]) reply[key].push_back(padded(value.get<std::string>(), digits));
+    if (send_jacobian) reply["jacobian"] = identity;
+    std::cout << reply.dump() << std::endl;
   }
   return 0;
 }

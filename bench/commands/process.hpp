@@ -15,7 +15,14 @@ namespace vivv {
 // process_step_us, del_step_us, ratio, within_target). Returns 0.
 int run_process_benchmark(std::ostream& out, const std::string& vivv_path);
 
-// `vivv map-echo`: the echo program of the benchmark (answers each request with its own q and p).
-int run_map_echo();
+// `vivv map-echo [--jacobian]`: the echo program of the benchmark (answers each request with its
+// own q and p, padded with zeros to the digits its greeting asked for; with --jacobian it takes
+// up the extension "jacobian" and sends the identity with each answer).
+int run_map_echo(bool send_jacobian = false);
+
+// Besides: one Jacobian for symplecticity from the echo sending its own, against one by central
+// differences of its steps (a second instance at 2D + 10 digits, or the same instance for a
+// double program), pendulum and Kepler in double and MPFR at 40 digits: rows "jacobians" with
+// own_jacobian_us, differences_us and speedup.
 
 }  // namespace vivv

@@ -52,6 +52,11 @@ struct OneStepMap {
   virtual State<T, n> step(const State<T, n>& x, const T& h) const = 0;
   // ∂(q', p')/∂(q, p) at x.
   virtual Matrix<T, 2 * n, 2 * n> jacobian(const State<T, n>& x, const T& h) const = 0;
+  // The relative rounding of jacobian()'s entries: ε of T for a Jacobian computed exactly (jets,
+  // the implicit function theorem, a program's own), larger for one by differences at a width
+  // the map's precision allows (a double program: about ε^(2/3)). symplecticity's tolerance is
+  // a multiple of it.
+  virtual T jacobian_unit() const { return epsilon<T>(); }
   // How jacobian() computes it, for the report.
   virtual std::string jacobian_method() const {
     return "forward-mode automatic differentiation of one step of " + name() +

@@ -51,8 +51,8 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
               scale.cwiseMax(phase_size<T, n>(x[k].q, momentum(context.system, x[k].q, x[k].w)));
         }
         std::size_t worst = 0;
-        units.push_back(
-            judge<T, n>(check, h, jacobians, std::vector<T>(jacobians.size(), T(1)), worst));
+        units.push_back(judge<T, n>(check, h, jacobians, std::vector<T>(jacobians.size(), T(1)),
+                                    context.map->jacobian_unit(), worst));
         // The map on (q, p) itself: w from p by the inverse Legendre transform, one step, p' =
         // FL(q', w').
         const State<T, n>& at = x[worst];
@@ -71,6 +71,7 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
         jacobian_checks.push_back(check_jacobian(h, worst, step, y, jacobians[worst], scale));
       });
       claim.evidence["jacobian"] = context.map->jacobian_method();
+      claim.evidence["jacobian_unit"] = to_decimal<T>(context.map->jacobian_unit(), 6);
       claim.evidence["tolerance_rule"] =
           std::to_string(ulps) +
           " ulps × max(1, |J|)² per step (measured: the step with the largest "
@@ -97,7 +98,7 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
                                max_entry<T, n, n>(past.dp_end_dq_b), max_entry<T, n, n>(past.dp_end_dq_e)}));
         }
         std::size_t worst = 0;
-        units.push_back(judge<T, n>(check, h, jacobians, sizes, worst));
+        units.push_back(judge<T, n>(check, h, jacobians, sizes, epsilon<T>(), worst));
         // The DEL's map on (q, p) itself: q' by Newton on p_begin[future](q, q') = p from the
         // trajectory's q_{k+1}, p' = p_end[past](q, q').
         const Vector<T, n>& q_next = q[worst + 1];
@@ -134,7 +135,8 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
     check.scaling_limit = "a defect above " + std::to_string(resolved) +
                           " rounding units at two h that falls like a power of h";
     claim.evidence["rounding_unit_rule"] =
-        "u = ε·s·max(1, |J|)² per step (s the largest Hessian block, 1 for a one-step map); a step "
+        "u = ε·s·max(1, |J|)² per step (s the largest Hessian block, 1 for a one-step map; for a "
+        "map whose Jacobian comes from differences at a double's widths, ε is evidence.jacobian_unit); a step "
         "fails above " +
         std::to_string(ulps) + " u, and defects above " + std::to_string(resolved) +
         " u at two or more h falling like a power of h fail as truncation";
@@ -200,13 +202,14 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
 
  private:
   // The verdict at one h from the step Jacobians J_k and the sizes s_k of what they were
-  // computed from: each step against ulps·u_k, u_k = ε·s_k·max(1, |J_k|)², the composition
+  // computed from: each step against ulps·u_k, u_k = unit·s_k·max(1, |J_k|)² (unit the relative
+  // rounding of the Jacobian's entries: ε, or a double program's differences'), the composition
   // against N times the largest of those times max(1, |J_N…J_1|)². Returns the rounding unit of
   // the step judged (the largest defect/tolerance) and sets `worst_step` to its index.
   template <class T, int n>
   static T judge(PerStepCheck<T>& check, const T& h,
                  const std::vector<Matrix<T, 2 * n, 2 * n>>& jacobians, const std::vector<T>& sizes,
-                 std::size_t& worst_step) {
+                 const T& unit, std::size_t& worst_step) {
     using std::max;
     const int N = static_cast<int>(jacobians.size());
     Matrix<T, 2 * n, 2 * n> composition = Matrix<T, 2 * n, 2 * n>::Identity();
@@ -214,7 +217,7 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
     for (int k = 0; k < N; ++k) {
       composition = jacobians[k] * composition;
       const T entry = max(T(1), max_entry<T, 2 * n, 2 * n>(jacobians[k]));
-      const T tolerance = ulps * epsilon<T>() * sizes[k] * entry * entry;
+      const T tolerance = ulps * unit * sizes[k] * entry * entry;
       const T defect = symplecticity_defect<T, 2 * n>(jacobians[k]);
       step_tolerance = max(step_tolerance, tolerance);
       largest_defect = max(largest_defect, defect);

@@ -370,7 +370,7 @@ struct CaseContext {
       for (int i = 0; i < n; ++i) orbit_size = max({orbit_size, T(abs(x.q[i])), T(abs(p[i]))});
     }
     return std::make_shared<ProcessMap<System>>(system, options, system_json, d.declared_order,
-                                                orbit_size);
+                                                orbit_size, d.process_precision == "double");
   }
 
   // h = T/N for every N of the sweep.

@@ -46,12 +46,15 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
  public:
   // `system_json`: the system as the case file gives it, every parameter filled in;
   // `orbit_size`: the reference orbit's size, max |q_i|, |p_i| over its states vivv knows.
+  // `double_program`: the case's discretization.precision "double" — the program computes in
+  // IEEE double, so its Jacobian comes from differences of its own steps at a double's widths.
   ProcessMap(System system, MapProcess::Options options, nlohmann::json system_json, int order,
-             const T& orbit_size)
+             const T& orbit_size, bool double_program = false)
       : system_(std::move(system)),
         options_(std::move(options)),
         system_json_(std::move(system_json)),
         order_(order),
+        double_program_(double_program),
         digits_(round_trip_digits<T>()),
         orbit_size_(orbit_size),
         bound_(to_decimal<T>(scale_bound(orbit_size))),
@@ -66,9 +69,31 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   std::string name() const override { return process_->name(); }
   int order() const override { return order_; }
   std::string jacobian_method() const override {
+    if (process_->uses_extension(jacobian_extension))
+      return "the program's own Jacobian (extension \"jacobian\"), sent with its answer at " +
+             std::to_string(digits_) + " digits; the first of each h and every " +
+             std::to_string(recheck) + "th checked against central differences of its steps at width 10^-" +
+             std::to_string(coarse_exponent()) + " and 10^-" + std::to_string(coarse_exponent() - 1);
+    if (double_program_)
+      return "central differences of one step of " + name() +
+             " (precision \"double\": the same instance, 17 digits) at widths δ = 10^-" +
+             std::to_string(double_exponent()) +
+             "·max(1, |y_j|) and 2δ in each of (q, p), extrapolated: (4·J_δ − J_2δ)/3";
     return "central differences of one step of " + name() + " in a second instance of it at " +
            std::to_string(fine_digits()) + " digits, step 10^-" +
            std::to_string(difference_exponent()) + "·max(1, |y_j|) in each of (q, p)";
+  }
+  // A double program's Jacobian by extrapolated differences at width δ = 10^-e: its rounding,
+  // 10^(e + 2 − D) (10^-11 at D = 17, e = 4): (4·r/δ + r/2δ)/3 ≈ 1.5·r/δ for a program whose
+  // answers err by r, a few ulps of |Φ| (≈ 5·10^-16 · |Φ|/max(1, |y|)), and JᵀΩJ multiplies two
+  // such. Calibrated on correct NumPy maps (Störmer–Verlet on the pendulum, implicit midpoint on
+  // Hénon–Heiles, Yoshida's composition on Kepler): at most 0.55 of it, where 10^-12 measured up
+  // to 5.4. Any other Jacobian is exact to the digits it carries.
+  T jacobian_unit() const override {
+    using std::pow;
+    if (double_program_ && !process_->uses_extension(jacobian_extension))
+      return T(pow(T(10), double_exponent() + 2 - digits_));
+    return epsilon<T>();
   }
 
   State<T, n> step(const State<T, n>& x, const T& h) const override {
@@ -96,80 +121,27 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   }
 
   Matrix<T, 2 * n, 2 * n> jacobian(const State<T, n>& x, const T& h) const override {
-    if (!fine_) fine_ = start(fine_digits());
+    const long step_index = next_jacobian_step(h);
     const Vector<T, n> p = momentum_at(x);
     std::array<std::string, 2 * n> y;
     for (int i = 0; i < n; ++i) y[i] = to_decimal<T>(x.q[i]), y[n + i] = to_decimal<T>(p[i]);
-    const std::string step = to_decimal<T>(h), epsilon_of_T = to_decimal<T>(epsilon<T>());
-    // The first Jacobian and every `recheck`-th one are computed again at 10 times the width: a
-    // program computing at the digits it was asked for gives the same matrix to about
-    // 10^(−(4D+14)/3) (the width's truncation grows 100 times), far below ε of the working
-    // precision; one that computes in fewer digits and pads its answers differs by its own
-    // rounding over the width, and the Jacobian would measure that instead of the map.
-    const bool check = jacobians_++ % recheck == 0;
-    std::array<std::array<std::string, 2 * n>, 2 * n> columns;  // ∂(q', p')/∂y_j, as decimals
-    {
-      PrecisionGuard guard(fine_digits() + 10);
-      using R = mpfr_real;
-      using std::abs, std::max, std::pow;
-      // Central differences at width 10^(−exponent)·max(1, |y_j|), column by column.
-      auto differences = [&](int exponent) {
-        std::array<std::array<R, 2 * n>, 2 * n> result;
-        for (int j = 0; j < 2 * n; ++j) {
-          const R yj = from_decimal<R>(y[j]);
-          const R delta = pow(R(10), -exponent) * max(R(1), R(abs(yj)));
-          std::array<std::array<R, 2 * n>, 2> images;
-          for (int side = 0; side < 2; ++side) {
-            nlohmann::json request = {
-                {"h", step}, {"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
-            for (int i = 0; i < 2 * n; ++i)
-              request[i < n ? "q" : "p"].push_back(
-                  i == j ? to_decimal<R>(side == 0 ? R(yj + delta) : R(yj - delta)) : y[i]);
-            const nlohmann::json answer = fine_->request(request);
-            for (int i = 0; i < n; ++i) {
-              images[side][i] = number<R>(*fine_, answer, "q", i, fine_digits());
-              images[side][n + i] = number<R>(*fine_, answer, "p", i, fine_digits());
-              require_within_scale(*fine_, images[side][i], "q", i, h);
-              require_within_scale(*fine_, images[side][n + i], "p", i, h);
-            }
-          }
-          for (int i = 0; i < 2 * n; ++i)
-            result[j][i] = (images[0][i] - images[1][i]) / (2 * delta);
-        }
-        return result;
-      };
-      const auto narrow = differences(difference_exponent());
-      if (check) {
-        // Against a coarse width 10^(-ceil(D/3)) too, which a program computing in fewer digits
-        // still resolves: padding below its precision makes both narrow widths see no change at
-        // all (a zero column agrees with itself). At the coarse width the truncation is about
-        // 10^(-2D/3) times the map's third derivative; a change above 10^(-ceil(D/6))·|J| would
-        // need a third derivative near 10^(D/2).
-        const auto wide = differences(difference_exponent() - 1);
-        const auto coarse = differences(coarse_exponent());
-        R largest = 1, change = 0, coarse_change = 0;
-        for (int j = 0; j < 2 * n; ++j)
-          for (int i = 0; i < 2 * n; ++i)
-            largest = max(largest, R(abs(narrow[j][i]))),
-            change = max(change, R(abs(narrow[j][i] - wide[j][i]))),
-            coarse_change = max(coarse_change, R(abs(narrow[j][i] - coarse[j][i])));
-        if (!(coarse_change <= pow(R(10), -((coarse_exponent() + 1) / 2)) * largest))
-          unmeasurable("its Jacobian by central differences at width 10^-" +
-                       std::to_string(difference_exponent()) + " differs by " +
-                       to_decimal<R>(coarse_change, 3) + " from the one at width 10^-" +
-                       std::to_string(coarse_exponent()) + " (|J| = " + to_decimal<R>(largest, 3) +
-                       ")");
-        if (!(change <= from_decimal<R>(epsilon_of_T) * largest))
-          unmeasurable("its Jacobian by central differences changes by " +
-                       to_decimal<R>(change, 3) + " between widths 10^-" +
-                       std::to_string(difference_exponent()) + " and 10^-" +
-                       std::to_string(difference_exponent() - 1) +
-                       ", more than the working precision's epsilon " +
-                       to_decimal<R>(from_decimal<R>(epsilon_of_T), 3) + " times |J| = " +
-                       to_decimal<R>(largest, 3));
-      }
+    const std::string step = to_decimal<T>(h);
+    if (process_->uses_extension(jacobian_extension)) return own_jacobian(y, h, step_index);
+    Columns columns;  // ∂(q', p')/∂y_j, as decimals
+    if (double_program_) {
+      // One instance at 17 digits, Richardson's extrapolation of central differences at widths δ
+      // and 2δ, (4·J_δ − J_2δ)/3: its truncation is O(δ⁴), so that δ = 10^-4 keeps it below the
+      // rounding, about 1.5·r/δ (r the program's own rounding) — where one width would leave δ²·Φ‴ in the
+      // measurement (up to 10 of its units on Kepler near pericentre at δ = 10^-5).
+      PrecisionGuard guard(digits_ + 30);
+      const auto narrow = differences(*process_, digits_, step, y, double_exponent(), h);
+      const auto wide = differences(*process_, digits_, step, y, double_exponent(), h, 2);
+      Differences extrapolated;
       for (int j = 0; j < 2 * n; ++j)
-        for (int i = 0; i < 2 * n; ++i) columns[j][i] = to_decimal<R>(narrow[j][i]);
+        for (int i = 0; i < 2 * n; ++i) extrapolated[j][i] = (4 * narrow[j][i] - wide[j][i]) / 3;
+      columns = decimals(extrapolated);
+    } else {
+      columns = fine_differences(y, step, h);
     }
     Matrix<T, 2 * n, 2 * n> jacobian;
     for (int i = 0; i < 2 * n; ++i)
@@ -177,7 +149,171 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     return jacobian;
   }
 
+  // The extension a program takes up to send its own Jacobian with each answer.
+  static constexpr const char* jacobian_extension = "jacobian";
+
  private:
+  using R = mpfr_real;
+  using Differences = std::array<std::array<R, 2 * n>, 2 * n>;      // [j][i] = ∂y'_i/∂y_j
+  using Columns = std::array<std::array<std::string, 2 * n>, 2 * n>;  // the same, as decimals
+
+  // Central differences of one step of `process` (answering with `digits` digits) at y and step
+  // size `step`, width 10^(−exponent)·max(1, |y_j|), column by column, in MPFR at the caller's
+  // PrecisionGuard.
+  Differences differences(MapProcess& process, int digits, const std::string& step,
+                          const std::array<std::string, 2 * n>& y, int exponent, const T& h,
+                          int multiple = 1) const {
+    using std::abs, std::max, std::pow;
+    Differences result;
+    for (int j = 0; j < 2 * n; ++j) {
+      const R yj = from_decimal<R>(y[j]);
+      const R delta = multiple * pow(R(10), -exponent) * max(R(1), R(abs(yj)));
+      std::array<std::array<R, 2 * n>, 2> images;
+      for (int side = 0; side < 2; ++side) {
+        nlohmann::json request = {
+            {"h", step}, {"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
+        for (int i = 0; i < 2 * n; ++i)
+          request[i < n ? "q" : "p"].push_back(
+              i == j ? to_decimal<R>(side == 0 ? R(yj + delta) : R(yj - delta)) : y[i]);
+        const nlohmann::json answer = process.request(request);
+        for (int i = 0; i < n; ++i) {
+          images[side][i] = number<R>(process, answer, "q", i, digits);
+          images[side][n + i] = number<R>(process, answer, "p", i, digits);
+          require_within_scale(process, images[side][i], "q", i, h);
+          require_within_scale(process, images[side][n + i], "p", i, h);
+        }
+      }
+      for (int i = 0; i < 2 * n; ++i) result[j][i] = (images[0][i] - images[1][i]) / (2 * delta);
+    }
+    return result;
+  }
+  static Columns decimals(const Differences& d) {
+    Columns columns;
+    for (int j = 0; j < 2 * n; ++j)
+      for (int i = 0; i < 2 * n; ++i) columns[j][i] = to_decimal<R>(d[j][i]);
+    return columns;
+  }
+
+  // The Jacobian by differences of a second instance at D₂ = 2D + 10 digits; the first and every
+  // `recheck`-th are computed again at ten times the width and at a coarse width (padded digits).
+  Columns fine_differences(const std::array<std::string, 2 * n>& y, const std::string& step,
+                           const T& h) const {
+    if (!fine_) fine_ = start(fine_digits());
+    const std::string epsilon_of_T = to_decimal<T>(epsilon<T>());
+    // The first Jacobian and every `recheck`-th one are computed again at 10 times the width: a
+    // program computing at the digits it was asked for gives the same matrix to about
+    // 10^(−(4D+14)/3) (the width's truncation grows 100 times), far below ε of the working
+    // precision; one that computes in fewer digits and pads its answers differs by its own
+    // rounding over the width, and the Jacobian would measure that instead of the map.
+    const bool check = jacobians_++ % recheck == 0;
+    PrecisionGuard guard(fine_digits() + 10);
+    using std::abs, std::max, std::pow;
+    const auto narrow = differences(*fine_, fine_digits(), step, y, difference_exponent(), h);
+    if (check) {
+      // Against a coarse width 10^(-ceil(D/3)) too, which a program computing in fewer digits
+      // still resolves: padding below its precision makes both narrow widths see no change at
+      // all (a zero column agrees with itself). At the coarse width the truncation is about
+      // 10^(-2D/3) times the map's third derivative; a change above 10^(-ceil(D/6))·|J| would
+      // need a third derivative near 10^(D/2).
+      const auto wide = differences(*fine_, fine_digits(), step, y, difference_exponent() - 1, h);
+      const auto coarse = differences(*fine_, fine_digits(), step, y, coarse_exponent(), h);
+      R largest = 1, change = 0, coarse_change = 0;
+      for (int j = 0; j < 2 * n; ++j)
+        for (int i = 0; i < 2 * n; ++i)
+          largest = max(largest, R(abs(narrow[j][i]))),
+          change = max(change, R(abs(narrow[j][i] - wide[j][i]))),
+          coarse_change = max(coarse_change, R(abs(narrow[j][i] - coarse[j][i])));
+      if (!(coarse_change <= pow(R(10), -((coarse_exponent() + 1) / 2)) * largest))
+        unmeasurable("its Jacobian by central differences at width 10^-" +
+                     std::to_string(difference_exponent()) + " differs by " +
+                     to_decimal<R>(coarse_change, 3) + " from the one at width 10^-" +
+                     std::to_string(coarse_exponent()) + " (|J| = " + to_decimal<R>(largest, 3) +
+                     ")");
+      if (!(change <= from_decimal<R>(epsilon_of_T) * largest))
+        unmeasurable("its Jacobian by central differences changes by " +
+                     to_decimal<R>(change, 3) + " between widths 10^-" +
+                     std::to_string(difference_exponent()) + " and 10^-" +
+                     std::to_string(difference_exponent() - 1) +
+                     ", more than the working precision's epsilon " +
+                     to_decimal<R>(from_decimal<R>(epsilon_of_T), 3) + " times |J| = " +
+                     to_decimal<R>(largest, 3));
+    }
+    return decimals(narrow);
+  }
+
+  // The program's own Jacobian (extension "jacobian") at y: one request marked "jacobian": true,
+  // its answer's "jacobian", 2n rows of 2n decimal strings of D digits, row i = ∂y'_i/∂(q, p)
+  // (a program may send it with every answer; vivv reads it only where it asked). The first of
+  // each h and every `recheck`-th are checked against central differences of the program's own
+  // steps at the coarse width 10^-c and at 10^-(c-1): an entry may differ from the first by 4
+  // times their difference (the truncation's size, over-estimated) + 100·10^(c-D)·max(1, |J|)
+  // (the rounding's); beyond that it is a wrong entry, a finding naming the step and the entry.
+  Matrix<T, 2 * n, 2 * n> own_jacobian(const std::array<std::string, 2 * n>& y, const T& h,
+                                       long step_index) const {
+    nlohmann::json request = {{"h", to_decimal<T>(h)},
+                              {"q", nlohmann::json::array()},
+                              {"p", nlohmann::json::array()},
+                              {jacobian_extension, true}};  // the answer must carry it
+    for (int i = 0; i < 2 * n; ++i) request[i < n ? "q" : "p"].push_back(y[i]);
+    const nlohmann::json answer = process_->request(request);
+    const std::size_t size = 2 * n;
+    if (!answer.contains(jacobian_extension) || !answer[jacobian_extension].is_array() ||
+        answer[jacobian_extension].size() != size)
+      process_->fail_answer(
+          "it took up the extension \"jacobian\" and its answer has no \"jacobian\" of " +
+          std::to_string(size) + " rows (got " +
+          (answer.contains(jacobian_extension) ? quoted_text(answer[jacobian_extension].dump(), 200)
+                                               : std::string("none")) +
+          ")");
+    Matrix<T, 2 * n, 2 * n> jacobian;
+    for (int i = 0; i < 2 * n; ++i) {
+      const nlohmann::json& row = answer[jacobian_extension][static_cast<std::size_t>(i)];
+      if (!row.is_array() || row.size() != size)
+        process_->fail_answer("jacobian[" + std::to_string(i) + "] is " + quoted_text(row.dump(), 200) +
+                              ", not a row of " + std::to_string(size) + " decimal strings");
+      for (int j = 0; j < 2 * n; ++j)
+        jacobian(i, j) = decimal<T>(*process_, row[static_cast<std::size_t>(j)],
+                                    "jacobian[" + std::to_string(i) + "][" + std::to_string(j) + "]",
+                                    digits_);
+    }
+    const long answered = process_->requests();
+    if (step_index % recheck != 0) return jacobian;
+    PrecisionGuard guard(digits_ + 10);
+    using std::abs, std::max, std::pow;
+    const std::string step = to_decimal<T>(h);
+    const auto coarse = differences(*process_, digits_, step, y, coarse_exponent(), h);
+    const auto coarser = differences(*process_, digits_, step, y, coarse_exponent() - 1, h);
+    R largest = 1;
+    for (int j = 0; j < 2 * n; ++j)
+      for (int i = 0; i < 2 * n; ++i) largest = max(largest, R(abs(coarse[j][i])));
+    const R rounding = 100 * pow(R(10), coarse_exponent() - digits_) * largest;
+    for (int j = 0; j < 2 * n; ++j)
+      for (int i = 0; i < 2 * n; ++i) {
+        const R own = from_decimal<R>(to_decimal<T>(jacobian(i, j)));
+        const R allowed = 4 * R(abs(coarse[j][i] - coarser[j][i])) + rounding;
+        if (!(abs(own - coarse[j][i]) <= allowed))
+          throw UnmeasurableJacobian(
+              "the map program " + name() + " sent a wrong Jacobian (extension \"jacobian\") at h = " +
+              shortest(h) + ", step " + std::to_string(step_index) + " of that run (request " +
+              std::to_string(answered) + "): entry jacobian[" + std::to_string(i) + "][" +
+              std::to_string(j) + "] = d" + (i < n ? "q'" : "p'") + "[" + std::to_string(i % n) +
+              "]/d" + (j < n ? "q" : "p") + "[" + std::to_string(j % n) + "] is " +
+              to_decimal<R>(own, 10) + ", while central differences of its own steps at width 10^-" +
+              std::to_string(coarse_exponent()) + " give " + to_decimal<R>(coarse[j][i], 10) +
+              " (they may differ by " + to_decimal<R>(allowed, 3) +
+              "): symplecticity would judge a matrix that is not the map's derivative");
+      }
+    return jacobian;
+  }
+
+  // The index of this Jacobian along its h's run: claims ask for them step by step, one h after
+  // another.
+  long next_jacobian_step(const T& h) const {
+    const std::string key = to_decimal<T>(h);
+    if (key != jacobian_h_) jacobian_h_ = key, jacobian_step_ = 0;
+    return jacobian_step_++;
+  }
+
   // UnmeasurableJacobian: the second instance's differences show that it does not compute with
   // the digits it was greeted with; `what` is the evidence. A finding about the program (its
   // symplecticity cannot be judged), not bad input: every other claim is still judged.
@@ -195,6 +331,9 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   }
 
   int fine_digits() const { return 2 * digits_ + 10; }
+  // A double program's difference width 10^-e, e = ⌊(D − 5)/3⌋ (4 at D = 17), extrapolated with
+  // 2δ: truncation 10^-16 times the map's fifth derivative, rounding about 10^-11 (jacobian_unit).
+  int double_exponent() const { return (digits_ - 5) / 3; }
   int difference_exponent() const { return (fine_digits() + 2) / 3; }
   int coarse_exponent() const { return (digits_ + 2) / 3; }
 
@@ -238,8 +377,11 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   }
 
   std::unique_ptr<MapProcess> start(int digits) const {
-    const nlohmann::json greeting = {
-        {"protocol", map_protocol}, {"digits", digits}, {"dimension", n}, {"system", system_json_}};
+    const nlohmann::json greeting = {{"protocol", map_protocol},
+                                     {"digits", digits},
+                                     {"dimension", n},
+                                     {"system", system_json_},
+                                     {"extensions", nlohmann::json::array({jacobian_extension})}};
     return std::make_unique<MapProcess>(options_, greeting);
   }
 
@@ -254,7 +396,13 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
           "expected \"" + std::string(key) + "\": an array of " + std::to_string(n) +
           " decimal strings (the system has " + std::to_string(n) + " coordinates), got " +
           (answer.contains(key) ? quoted_text(answer[key].dump(), 200) : std::string("none")));
-    const nlohmann::json& value = answer[key][static_cast<std::size_t>(i)];
+    return decimal<S>(process, answer[key][static_cast<std::size_t>(i)], field, digits);
+  }
+  // `value`, the answer's `field`, as a decimal string with at least `digits` significant digits
+  // (or zero), in S.
+  template <class S>
+  static S decimal(const MapProcess& process, const nlohmann::json& value, const std::string& field,
+                   int digits) {
     if (!value.is_string())
       process.fail_answer(
           field + " is " + quoted_text(value.dump(), 100) +
@@ -279,12 +427,15 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   MapProcess::Options options_;
   nlohmann::json system_json_;
   int order_;
+  bool double_program_;
   int digits_;
   T orbit_size_;
   std::string bound_;  // 10^divergence_digits times the orbit's size, a decimal
   std::unique_ptr<MapProcess> process_;
   mutable std::unique_ptr<MapProcess> fine_;  // started by the first Jacobian
-  mutable long jacobians_ = 0;                // Jacobians computed so far
+  mutable long jacobians_ = 0;                // Jacobians by the second instance so far
+  mutable std::string jacobian_h_;            // the h of the last Jacobian, and its index there
+  mutable long jacobian_step_ = 0;
   mutable std::optional<std::pair<State<T, n>, Vector<T, n>>> last_;  // the last answer: (q, w), p
   static constexpr long recheck = 8;
 };

@@ -173,6 +173,16 @@ void permit_process(CaseSpec& spec, bool allowed, double timeout_seconds,
             "' that it names; vivv starts programs named in case files only when asked to: " +
             how_to_allow);
   }
+  // A program that is not there is bad input found before anything computes (exit 2, no
+  // report), not a case that could not run; it is looked up again when it starts.
+  if (!spec.discretization.command.empty()) {
+    try {
+      resolve_program(spec.discretization.command.front(),
+                      fs::absolute(spec.file).parent_path().string());
+    } catch (const MapProcessError& error) {
+      throw CaseError(spec.file, "discretization.command", error.what());
+    }
+  }
   spec.discretization.process_allowed = true;
   spec.discretization.process_timeout_seconds = timeout_seconds;
 }
@@ -324,6 +334,20 @@ void MapProcess::greet(const nlohmann::json& greeting) {
   if (!answer.is_object() || !answer.contains("protocol") || answer["protocol"] != map_protocol)
     fail(what, std::string("it answered ") + shortened(line) + ", not {\"protocol\": \"" +
                    map_protocol + "\"} (or {\"error\": …} to decline)");
+  // The extensions it takes up: a subset of those offered, named in an array of strings.
+  if (answer.contains("extensions")) {
+    const nlohmann::json offered = greeting.value("extensions", nlohmann::json::array());
+    const nlohmann::json& named = answer["extensions"];
+    if (!named.is_array())
+      fail(what, "its \"extensions\" is " + shortened(named.dump()) +
+                     ", not an array of the extensions offered: " + offered.dump());
+    for (const auto& extension : named) {
+      if (!extension.is_string() || std::find(offered.begin(), offered.end(), extension) == offered.end())
+        fail(what, "it took up the extension " + shortened(extension.dump()) +
+                       ", which the greeting did not offer (offered: " + offered.dump() + ")");
+      extensions_.push_back(extension.get<std::string>());
+    }
+  }
 }
 
 MapProcess::~MapProcess() { stop(); }

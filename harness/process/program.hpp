@@ -10,6 +10,7 @@
 
 #include <sys/types.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -26,8 +27,9 @@ inline constexpr const char* map_protocol = "vivv-map/1";
 // array of arrays, 4); deeper answers are refused before they are built.
 inline constexpr int maximum_answer_depth = 8;
 
-// A program that cannot be started, declines, dies, hangs or breaks the protocol: bad input
-// (exit 2), the message naming the program and the request it failed.
+// A program that cannot be started, declines, dies, hangs or breaks the protocol while its case
+// runs: the case could not run (recorded in the reports, exit 4), the message naming the program
+// and the request it failed.
 struct MapProcessError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
@@ -56,6 +58,11 @@ class MapProcess {
   std::string name() const;
   // Requests answered so far (the greeting not counted).
   long requests() const { return requests_; }
+  // Whether the program took up `extension` (offered in the greeting's "extensions", named in
+  // its answer's): "jacobian", its own Jacobian in each answer.
+  bool uses_extension(const std::string& extension) const {
+    return std::find(extensions_.begin(), extensions_.end(), extension) != extensions_.end();
+  }
   // A MapProcessError naming the program, the request just answered (at most 300 characters of
   // it) and `what` is wrong with its answer.
   [[noreturn]] void fail_answer(const std::string& what) const;
@@ -84,6 +91,7 @@ class MapProcess {
   std::string last_request_;
   std::string token_;  // descendant_token=<vivv's pid>-<count>, in the program's environment
   long requests_ = 0;
+  std::vector<std::string> extensions_;  // the offered extensions its greeting's answer named
 };
 
 // What every run does with a case whose discretization is a process (kind "process") before
