@@ -74,9 +74,13 @@ std::string observed_html(const json& claim) {
       largest_text = e.get<std::string>();
     }
   }
-  if (!largest)
+  if (!largest) {
+    // Zeros that were measured (an exact method) read as such; an inconclusive claim's zeros are
+    // what it could not measure, not an error of 0.
+    if (text_of(claim, "verdict") == "inconclusive") return "not measured";
     return "max error 0 <span class=\"small\">(all " + std::to_string(errors.size()) +
            " exactly 0)</span>";
+  }
   return "max error " + decimal_html(largest_text);
 }
 
@@ -435,10 +439,17 @@ std::string render_html(const json& report) {
     badges += "<a class=\"verdict v-fail\" data-count=\"regressed\" href=\"#attention\">" +
               std::to_string(regressed_count) + " regressed</a>";
   }
-  if (!refused.empty()) {
-    counts += ", " + std::to_string(refused.size()) + " refused";
+  const auto not_run = static_cast<std::size_t>(
+      std::count_if(refused.begin(), refused.end(), [](const json& entry) { return could_not_run(entry); }));
+  if (refused.size() > not_run) {
+    counts += ", " + std::to_string(refused.size() - not_run) + " refused";
     badges += "<a class=\"verdict v-error\" data-count=\"refused\" href=\"#attention\">" +
-              std::to_string(refused.size()) + " refused</a>";
+              std::to_string(refused.size() - not_run) + " refused</a>";
+  }
+  if (not_run > 0) {
+    counts += ", " + std::to_string(not_run) + " could not run";
+    badges += "<a class=\"verdict v-error\" data-count=\"could-not-run\" href=\"#attention\">" +
+              std::to_string(not_run) + " could not run</a>";
   }
   std::ostringstream page;
   page << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
@@ -449,6 +460,18 @@ std::string render_html(const json& report) {
        << total << " claims of the error analysis of variational integrators, each checked "
        << "against a near-exact reference flow. Schema <code>" << escape(text_of(report, "schema"))
        << "</code>.</p>\n";
+  // The claims --claims selected, and the cases it left without one.
+  const json selected = run.value("overrides", json::object()).value("claims", json());
+  if (selected.is_array()) {
+    std::string names, skipped;
+    for (const auto& id : selected) names += (names.empty() ? "" : ", ") + id.get<std::string>();
+    for (const auto& entry : run.value("skipped_cases", json::array()))
+      skipped += (skipped.empty() ? "" : ", ") + text_of(entry, "name");
+    page << "<p class=\"lede\" data-claims-selected=\"1\">Only the claims <code>" << escape(names)
+         << "</code> were run (--claims)"
+         << (skipped.empty() ? std::string() : "; skipped, listing none of them: " + escape(skipped))
+         << ".</p>\n";
+  }
   page << "<div class=\"summary\" data-summary=\"1\">" << badges << "</div>\n";
 
   // Keys and anchors, in report order.
@@ -464,7 +487,9 @@ std::string render_html(const json& report) {
   // section, with the series that decided it and why, before the full findings table.
   std::ostringstream attention;
   for (std::size_t i = 0; i < refused.size(); ++i)
-    attention << "<li data-attention=\"refused\"><span class=\"verdict v-error\">refused</span> <b>"
+    attention << "<li data-attention=\"" << (could_not_run(refused[i]) ? "could-not-run" : "refused")
+              << "\"><span class=\"verdict v-error\">"
+              << (could_not_run(refused[i]) ? "could not run" : "refused") << "</span> <b>"
               << escape(text_of(refused[i], "name")) << "</b> <span class=\"small\">("
               << escape(text_of(refused[i], "file"))
               << ")</span>: " << escape(text_of(refused[i], "message")) << "</li>\n";
@@ -499,8 +524,8 @@ std::string render_html(const json& report) {
           "order (=). Observed: least-squares order with its 95% interval. Hover a shortened "
           "number for all its digits.</p>\n";
   page << "<table class=\"findings\"><colgroup><col style=\"width:13%\"><col style=\"width:11%\">"
-          "<col style=\"width:11%\"><col style=\"width:25%\"><col style=\"width:11%\">"
-          "<col style=\"width:7%\"><col style=\"width:22%\"></colgroup>"
+          "<col style=\"width:11%\"><col style=\"width:22%\"><col style=\"width:11%\">"
+          "<col style=\"width:10%\"><col style=\"width:22%\"></colgroup>"
           "<thead><tr><th>case</th><th>claim</th><th>source</th>"
           "<th>prediction</th><th>observed order</th><th>verdict</th><th>why they differ / "
           "agree</th>"

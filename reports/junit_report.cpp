@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "reports/report.hpp"
 #include "reports/report_text.hpp"
 
 namespace vivv {
@@ -63,9 +64,10 @@ std::string render_junit(const nlohmann::json& report) {
   const auto& summary = report["summary"];
   int total = 0;
   for (const auto& [verdict, count] : summary.items()) total += count.get<int>();
-  // A case --keep-going refused is one testcase with an error (bad input, no claim computed).
+  // A refused case is one testcase with an error (no claim computed).
   const nlohmann::json refused = report.value("refused", nlohmann::json::array());
   const nlohmann::json seconds = report["run"].value("case_seconds", nlohmann::json::object());
+  const nlohmann::json skipped_cases = report["run"].value("skipped_cases", nlohmann::json::array());
   // JUnit's words: a failing claim and an xpass (a known failure that went away) are failures,
   // an xfail is skipped with its reason.
   int regressed = 0, regressed_xfail = 0;
@@ -74,11 +76,11 @@ std::string render_junit(const nlohmann::json& report) {
       if (regressed_only(claim)) ++regressed, regressed_xfail += claim["verdict"] == "xfail";
   std::ostringstream out;
   out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  out << "<testsuites name=\"vivv\" tests=\"" << total + refused.size() << "\" failures=\""
+  out << "<testsuites name=\"vivv\" tests=\"" << total + refused.size() + skipped_cases.size() << "\" failures=\""
       << summary.value("fail", 0) + summary.value("inconclusive", 0) + summary.value("xpass", 0) +
              regressed
       << "\" errors=\"" << summary.value("error", 0) + refused.size() << "\" skipped=\""
-      << summary.value("xfail", 0) - regressed_xfail << "\">\n";
+      << summary.value("xfail", 0) - regressed_xfail + static_cast<int>(skipped_cases.size()) << "\">\n";
   for (const auto& c : report["cases"]) {
     std::string name = c["name"];
     int failures = 0, errors = 0, skipped = 0;
@@ -121,15 +123,29 @@ std::string render_junit(const nlohmann::json& report) {
     }
     out << "  </testsuite>\n";
   }
+  // A case whose map program failed while it ran is an error of its own type, "could-not-run".
   for (const auto& entry : refused) {
     const std::string name = string_field(entry, "name");
+    const char* type = could_not_run(entry) ? "could-not-run" : "refused";
     out << "  <testsuite name=\"" << xml_escape(name)
         << "\" tests=\"1\" failures=\"0\" errors=\"1\" skipped=\"0\">\n"
-        << "    <testcase classname=\"" << xml_escape(name) << "\" name=\"refused\">\n"
-        << "      <error type=\"refused\" message=\"" << xml_escape(string_field(entry, "message"))
+        << "    <testcase classname=\"" << xml_escape(name) << "\" name=\"" << type << "\">\n"
+        << "      <error type=\"" << type << "\" message=\"" << xml_escape(string_field(entry, "message"))
         << "\">" << xml_escape(string_field(entry, "file") + ": " + string_field(entry, "message"))
         << "</error>\n"
         << "    </testcase>\n  </testsuite>\n";
+  }
+  // A case --claims skipped is one testcase skipped, naming the claims it lists.
+  for (const auto& entry : skipped_cases) {
+    const std::string name = string_field(entry, "name");
+    std::string claims;
+    for (const auto& id : entry.value("claims", nlohmann::json::array()))
+      claims += (claims.empty() ? "" : ", ") + id.get<std::string>();
+    out << "  <testsuite name=\"" << xml_escape(name)
+        << "\" tests=\"1\" failures=\"0\" errors=\"0\" skipped=\"1\">\n"
+        << "    <testcase classname=\"" << xml_escape(name) << "\" name=\"skipped\">\n"
+        << "      <skipped message=\"" << xml_escape("--claims selects none of its claims (" + claims + ")")
+        << "\"/>\n    </testcase>\n  </testsuite>\n";
   }
   out << "</testsuites>\n";
   return out.str();

@@ -20,6 +20,7 @@
 #include "cases/case_file.hpp"
 #include "reports/html_report.hpp"
 #include "reports/junit_report.hpp"
+#include "reports/report_text.hpp"
 #include "reports/schema_check.hpp"
 #include "core/platform/signals.hpp"
 #include "core/platform/text.hpp"
@@ -70,10 +71,13 @@ nlohmann::json series_json(const Series& series) {
 }  // namespace
 
 // Each run's L evaluations, by N (deterministic: in the case); its wall time goes to the run block.
+// A program's map evaluates L, if at all, where vivv does not count: unknown (null), not 0.
 nlohmann::json run_cost(const CaseResult& result) {
   nlohmann::json out = nlohmann::json::array();
+  const bool counted = result.spec.discretization.kind != "process";
   for (const auto& [N, cost] : result.run_costs)
-    out.push_back({{"N", N}, {"L_evaluations", cost.lagrangian_evaluations}});
+    out.push_back({{"N", N},
+                   {"L_evaluations", counted ? nlohmann::json(cost.lagrangian_evaluations) : nlohmann::json()}});
   return out;
 }
 nlohmann::json run_seconds(const CaseResult& result) {
@@ -85,8 +89,22 @@ nlohmann::json run_seconds(const CaseResult& result) {
 
 nlohmann::json case_json(const CaseResult& result) {
   const CaseSpec& spec = result.spec;
+  // A number the case file wrote as a formula ("pi/4") is recorded as written (under "written")
+  // and as used: its decimal rounded to the digits that carry the working precision.
+  std::map<std::string, std::string> written(spec.written.begin(), spec.written.end());
+  const int used_digits =
+      result.precision_bits > 0 ? static_cast<int>(std::ceil(result.precision_bits * std::log10(2.0))) + 1 : 40;
+  const auto as_used = [&](const std::string& field, const std::string& text) {
+    return written.count(field) ? rounded_decimal(text, used_digits) : text;
+  };
   nlohmann::json parameters = nlohmann::json::object();
-  for (const auto& [name, value] : spec.parameters) parameters[name] = value;
+  for (const auto& [name, value] : spec.parameters)
+    parameters[name] = as_used("system.params." + name, value);
+  nlohmann::json initial = {{"q", nlohmann::json::array()}, {"w", nlohmann::json::array()}};
+  for (std::size_t i = 0; i < spec.q.size(); ++i) {
+    initial["q"].push_back(as_used("initial.q[" + std::to_string(i) + "]", spec.q[i]));
+    initial["w"].push_back(as_used("initial.w[" + std::to_string(i) + "]", spec.w[i]));
+  }
   nlohmann::json claims = nlohmann::json::array();
   for (const auto& claim : result.claims) {
     nlohmann::json c = {{"id", claim.id},
@@ -113,15 +131,15 @@ nlohmann::json case_json(const CaseResult& result) {
     }
     claims.push_back(c);
   }
-  return {{"name", spec.name},
+  nlohmann::json out = {{"name", spec.name},
           {"file", spec.file},
           {"case_file", spec.source},
           {"system", spec.system},
           {"system_implementation", result.implementation},
           {"lagrangian_formula", result.formula},
           {"parameters", parameters},
-          {"initial", {{"q", spec.q}, {"w", spec.w}}},
-          {"T", spec.final_time},
+          {"initial", initial},
+          {"T", as_used("T", spec.final_time)},
           {"steps", spec.steps},
           {"order_tolerance", spec.order_tolerance},
           {"sweep",
@@ -162,6 +180,8 @@ nlohmann::json case_json(const CaseResult& result) {
           {"run_seconds", run_seconds(result)},
           {"cost", run_cost(result)},
           {"claims", claims}};
+  if (!written.empty()) out["written"] = written;
+  return out;
 }
 
 const std::vector<std::string>& verdict_names() {
@@ -297,7 +317,8 @@ std::string render_csv(const nlohmann::json& report) {
                                        .value("steps_used", c.value("steps", std::vector<int>{}));
     std::map<int, std::string> evaluations, seconds;
     for (const auto& row : c.value("cost", nlohmann::json::array()))
-      evaluations[row.value("N", 0)] = row.value("L_evaluations", nlohmann::json()).dump();
+      if (row.contains("L_evaluations") && row["L_evaluations"].is_number())  // unknown: empty
+        evaluations[row.value("N", 0)] = row["L_evaluations"].dump();
     for (const auto& row : run_seconds.value(name, nlohmann::json::array()))
       seconds[row.value("N", 0)] = row.value("seconds", nlohmann::json()).dump();
     for (const auto& claim : c.value("claims", nlohmann::json::array()))
@@ -491,22 +512,40 @@ static void write_claims_table(std::ostream& out, const nlohmann::json& report, 
           << status << " against the baseline: " << baseline.value("explanation", std::string())
           << "\n";
     }
-  // Cases --keep-going recorded as refused: what refused each (the run exits 2).
+  // Cases recorded as refused: bad input --keep-going recorded (the run exits 2), or a map
+  // program that failed while its case ran (could not run, exit 4): what stopped each.
   const nlohmann::json refused = report.value("refused", nlohmann::json::array());
-  for (const auto& entry : refused)
-    out << entry.value("name", std::string())
-        << ": refused: " << entry.value("message", std::string()) << "\n";
-  out << "claims: " << summary_text(report["summary"]);
+  std::size_t not_run = 0;
+  for (const auto& entry : refused) {
+    not_run += could_not_run(entry);
+    out << entry.value("name", std::string()) << (could_not_run(entry) ? ": could not run: " : ": refused: ")
+        << entry.value("message", std::string()) << "\n";
+  }
   const nlohmann::json run = report.value("run", nlohmann::json::object());
+  // Cases --claims skipped: none of their claims was selected.
+  const nlohmann::json skipped = run.value("skipped_cases", nlohmann::json::array());
+  for (const auto& entry : skipped) {
+    std::string claims;
+    for (const auto& id : entry.value("claims", nlohmann::json::array()))
+      claims += (claims.empty() ? "" : ", ") + id.get<std::string>();
+    out << entry.value("name", std::string()) << ": skipped: --claims selects none of its claims ("
+        << claims << ")\n";
+  }
+  out << "claims: " << summary_text(report["summary"]);
   if (run.contains("baseline") && run["baseline"].is_object()) {
     const nlohmann::json& b = run["baseline"];
     out << "; against the baseline: " << b.value("regressed", 0) << " regressed, "
         << b.value("improved", 0) << " improved, " << b.value("unchanged", 0) << " unchanged, "
         << b.value("not_compared", 0) << " not compared";
   }
-  if (!refused.empty())
-    out << "; " << refused.size() << " case" << (refused.size() == 1 ? "" : "s")
+  if (refused.size() > not_run)
+    out << "; " << refused.size() - not_run << " case" << (refused.size() - not_run == 1 ? "" : "s")
         << " refused (exit 2)";
+  if (not_run > 0)
+    out << "; " << not_run << " case" << (not_run == 1 ? "" : "s") << " could not run"
+        << (refused.size() > not_run ? "" : " (exit 4)");
+  if (!skipped.empty())
+    out << "; " << skipped.size() << " case" << (skipped.size() == 1 ? "" : "s") << " skipped (--claims)";
   out << "\n";
 }
 

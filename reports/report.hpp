@@ -1,4 +1,4 @@
-// The report model and its renderers: report.json (schema "vivv-report/5",
+// The report model and its renderers: report.json (schema "vivv-report/6",
 // documented in reports/SCHEMA.md and reports/schema.json), the console claims
 // table, and the report directory (report.json, report.html, junit.xml).
 #pragma once
@@ -14,14 +14,23 @@
 
 namespace vivv {
 
-inline constexpr const char* report_schema = "vivv-report/5";
-// The schemas `vivv report` and `--baseline` read: this one and the one before it (vivv-report/5
-// added the exact-coefficients rule, local-order and evidence fields to /4; every /4 report is a
-// valid /5 one).
+inline constexpr const char* report_schema = "vivv-report/6";
+// The schemas `vivv report` and `--baseline` read: this one and the two before it (vivv-report/6
+// added the kind of a refused case, "could-not-run"; /5 the exact-coefficients rule, local-order
+// and evidence fields to /4; every /4 and /5 report is a valid /6 one).
 inline bool readable_report_schema(const nlohmann::json& report) {
   if (!report.is_object() || !report.contains("schema")) return false;
   const nlohmann::json& schema = report["schema"];
-  return schema == report_schema || schema == "vivv-report/4";
+  return schema == report_schema || schema == "vivv-report/5" || schema == "vivv-report/4";
+}
+// The schemas readable_report_schema accepts, for messages.
+inline constexpr const char* readable_report_schemas =
+    "\"vivv-report/6\", \"vivv-report/5\" or \"vivv-report/4\"";
+
+// A refused case (report["refused"]) whose map program crashed, hung or broke the protocol while
+// it ran (kind "could-not-run", exit 4), not bad input (kind "bad-input" or none, exit 2).
+inline bool could_not_run(const nlohmann::json& refused_entry) {
+  return refused_entry.is_object() && refused_entry.value("kind", "") == "could-not-run";
 }
 
 struct RunInfo {

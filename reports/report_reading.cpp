@@ -65,7 +65,7 @@ std::optional<std::vector<std::size_t>> shard_positions(
       throw ReportError(
           file + ": run.overrides: " + overrides.dump() + ", while " + first->first + " ran with " +
           reference_overrides.dump() +
-          ": the shards of one split must run with the same --digits, --scalar and --refine");
+          ": the shards of one split must run with the same --digits, --scalar, --refine and --claims");
     if (shard.at("suite") != reference.at("suite") || shard.at("suite").size() != size)
       throw ReportError(file + ": run.shard.suite: not the list of cases " + first->first +
                         " was split from: every shard must be given the same case files in the same order");
@@ -121,7 +121,7 @@ nlohmann::json merge_reports(const std::vector<std::pair<std::string, nlohmann::
   for (const auto& [file, report] : inputs) {
     if (!readable_report_schema(report))
       throw ReportError(
-          file + ": schema: expected \"" + report_schema + "\" or \"vivv-report/4\", got " +
+          file + ": schema: expected " + readable_report_schemas + ", got " +
           (report.is_object() && report.contains("schema") ? report["schema"].dump() : "none"));
     for (const auto& c : report.at("cases")) {
       std::string name = c.at("name");
@@ -145,6 +145,13 @@ nlohmann::json merge_reports(const std::vector<std::pair<std::string, nlohmann::
     for (const auto& [name, runs] : run_seconds.items()) run_json["run_seconds"][name] = runs;
     const nlohmann::json case_paths = source_run.value("case_paths", nlohmann::json::object());
     for (const auto& [name, path] : case_paths.items()) run_json["case_paths"][name] = path;
+    for (const auto& entry : source_run.value("skipped_cases", nlohmann::json::array())) {
+      auto [it, fresh] = seen.emplace(entry.at("name").get<std::string>(), file);
+      if (!fresh)
+        throw ReportError(file + ": run.skipped_cases: the case '" + entry.at("name").get<std::string>() +
+                          "' is also in " + it->second);
+      run_json["skipped_cases"].push_back(entry);
+    }
     run_json["merged_from"].push_back({{"report", file}, {"run", source_run}});
   }
   // The shards of one split merge into the suite's order: the unsharded run's report.
@@ -245,7 +252,7 @@ nlohmann::json read_report(const std::string& path) {
   }
   if (!readable_report_schema(report))
     throw ReportError(
-        path + ": schema: expected \"" + std::string(report_schema) + "\" or \"vivv-report/4\", got " +
+        path + ": schema: expected " + std::string(readable_report_schemas) + ", got " +
         (report.is_object() && report.contains("schema") ? report["schema"].dump().substr(0, 80) : "none"));
   if (!report.contains("cases") || !report["cases"].is_array() || !report.contains("run") ||
       !report["run"].is_object())

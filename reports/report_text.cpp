@@ -1,5 +1,7 @@
 #include "reports/report_text.hpp"
 
+#include <cctype>
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -91,6 +93,50 @@ std::string short_decimal(const std::string& decimal, int digits) {
     ++k;
   }
   return text + "e" + std::to_string(k);
+}
+
+std::string rounded_decimal(const std::string& decimal, int digits) {
+  std::size_t at = 0;
+  const bool negative = !decimal.empty() && decimal[0] == '-';
+  if (negative) ++at;
+  std::string mantissa;
+  long point = -1, exponent = 0;
+  for (; at < decimal.size() && decimal[at] != 'e' && decimal[at] != 'E'; ++at) {
+    if (decimal[at] == '.' && point < 0)
+      point = static_cast<long>(mantissa.size());
+    else if (std::isdigit(static_cast<unsigned char>(decimal[at])))
+      mantissa += decimal[at];
+    else
+      return decimal;
+  }
+  if (at < decimal.size()) {
+    const std::string tail = decimal.substr(at + 1);
+    if (tail.empty() || tail.size() > 18 ||
+        tail.find_first_not_of("+-0123456789") != std::string::npos)
+      return decimal;
+    exponent = std::stol(tail);
+  }
+  if (point < 0) point = static_cast<long>(mantissa.size());
+  // value = 0.mantissa × 10^(point + exponent)
+  while (!mantissa.empty() && mantissa[0] == '0') mantissa.erase(0, 1), --point;
+  if (mantissa.empty() || digits < 1) return "0";
+  if (static_cast<long>(mantissa.size()) > digits) {
+    const bool up = mantissa[static_cast<std::size_t>(digits)] >= '5';
+    mantissa.resize(static_cast<std::size_t>(digits));
+    for (long i = digits - 1; up && i >= 0; --i) {
+      if (mantissa[static_cast<std::size_t>(i)] != '9') {
+        ++mantissa[static_cast<std::size_t>(i)];
+        break;
+      }
+      mantissa[static_cast<std::size_t>(i)] = '0';
+      if (i == 0) mantissa.insert(0, "1"), ++point, mantissa.pop_back();
+    }
+  }
+  while (mantissa.size() > 1 && mantissa.back() == '0') mantissa.pop_back();
+  const long scientific = point - 1 + exponent;
+  return std::string(negative ? "-" : "") + mantissa[0] +
+         (mantissa.size() > 1 ? "." + mantissa.substr(1) : std::string()) +
+         (scientific != 0 ? "e" + std::to_string(scientific) : std::string());
 }
 
 std::optional<double> log10_decimal(const std::string& decimal) {

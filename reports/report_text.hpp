@@ -17,6 +17,11 @@ std::string xml_escape(const std::string& text);
 // not a decimal number comes back unchanged.
 std::string short_decimal(const std::string& decimal, int digits = 4);
 
+// The decimal string rounded to `digits` significant digits (half up), as "d.ddde-k" — digit by
+// digit, never through a double: "7.853981633974483096156608458198757e-1", 17 ->
+// "7.8539816339744831e-1". Text that is not a decimal comes back unchanged.
+std::string rounded_decimal(const std::string& decimal, int digits);
+
 // log10(x) of the decimal string x: log10(mantissa) + exponent. Empty when x
 // is zero, negative, not finite or not a number.
 std::optional<double> log10_decimal(const std::string& decimal);

@@ -27,6 +27,15 @@ constexpr int exit_crash = 3;
 struct WorkerCrash : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+// A case that could not run to its end because its map program crashed, hung or broke the
+// protocol once the options and case files had been read: recorded in report.json and
+// junit.xml (refused, kind "could-not-run"), the other cases keep their results, and the run
+// exits 4 — neither a verdict, nor bad input (2, found before anything computes), nor a killed
+// worker (3).
+constexpr int exit_could_not_run = 4;
+struct CouldNotRun : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 struct BadInput : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -60,6 +69,9 @@ struct RunOptions {
   // --baseline OLD/report.json: each claim's fitted series compared with OLD's (regressed: exit 1).
   std::optional<std::string> baseline;
   double baseline_tolerance = default_baseline_tolerance;
+  // --claims a,b: only these of each case's claims run; a case that lists none is skipped and
+  // reported as skipped. Empty: every claim of every case.
+  std::vector<std::string> claims;
   // --allow-process: cases may start the programs they name (discretization kind "process");
   // --process-timeout: the seconds such a program has for each answer.
   bool allow_process = false;

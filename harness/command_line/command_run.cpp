@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "harness/verdicts/baseline.hpp"
+#include "cases/case_reader.hpp"
 #include "harness/command_line/command_line.hpp"
 #include "harness/process/program.hpp"
 #include "harness/verdicts/rejudge.hpp"
@@ -93,8 +94,47 @@ int write_reports(const std::string& out, const nlohmann::json& report, bool ver
   std::cout << "report:";
   for (const auto& path : paths) std::cout << " " << path;
   std::cout << "\n";
-  if (report.contains("refused") && !report["refused"].empty()) return exit_bad_input;
+  bool could_not_run = false;
+  for (const auto& entry : report.value("refused", nlohmann::json::array())) {
+    if (entry.value("kind", "bad-input") != "could-not-run") return exit_bad_input;
+    could_not_run = true;
+  }
+  if (could_not_run) return exit_could_not_run;
   return run_succeeded(report["summary"]) && regressed_claims(report) == 0 ? exit_pass : exit_fail;
+}
+
+// --claims: each case keeps only the selected claims (and its expectations of them). A selected
+// claim no case lists is refused, naming the claims the cases do list; a case left with none is
+// skipped: the entries {file, name, claims, position} returned say which.
+static nlohmann::json select_claims(std::vector<CaseSpec>& specs, const std::vector<std::string>& selected) {
+  nlohmann::json skipped = nlohmann::json::array();
+  if (selected.empty()) return skipped;
+  std::vector<std::string> listed;
+  for (const auto& spec : specs)
+    for (const auto& id : spec.claims)
+      if (std::find(listed.begin(), listed.end(), id) == listed.end()) listed.push_back(id);
+  for (const auto& id : selected)
+    if (std::find(listed.begin(), listed.end(), id) == listed.end())
+      throw BadInput("--claims: no case of this run lists the claim '" + id + "'" +
+                     case_reading::did_you_mean(id, listed) + "; they list: " +
+                     case_reading::join(listed));
+  for (std::size_t k = 0; k < specs.size(); ++k) {
+    CaseSpec& spec = specs[k];
+    std::vector<std::string> kept;
+    for (const auto& id : spec.claims)
+      if (std::find(selected.begin(), selected.end(), id) != selected.end()) kept.push_back(id);
+    if (kept.empty())
+      skipped.push_back({{"file", report_file_name(spec.file)},
+                         {"name", spec.name},
+                         {"claims", spec.claims},
+                         {"position", k}});
+    for (auto it = spec.xfail.begin(); it != spec.xfail.end();)
+      it = std::find(kept.begin(), kept.end(), it->first) == kept.end() ? spec.xfail.erase(it) : std::next(it);
+    for (auto it = spec.expect.begin(); it != spec.expect.end();)
+      it = std::find(kept.begin(), kept.end(), it->first) == kept.end() ? spec.expect.erase(it) : std::next(it);
+    spec.claims = kept;
+  }
+  return skipped;
 }
 
 int command_run(const std::vector<std::string>& args, const std::string& command_line) {
@@ -121,6 +161,7 @@ int command_run(const std::vector<std::string>& args, const std::string& command
   }
   // The options against every case before any computes: a case they cannot run refuses the run.
   for (const auto& spec : specs) check_precision_options(spec, options.scalar, options.digits);
+  const nlohmann::json skipped = select_claims(specs, options.claims);
   for (auto& spec : specs)
     permit_process(spec, options.allow_process, options.process_timeout,
                    "vivv run --allow-process");
@@ -128,7 +169,8 @@ int command_run(const std::vector<std::string>& args, const std::string& command
   // a shard then computes its own positions.
   std::vector<std::size_t> positions;
   for (std::size_t k = 0; k < specs.size(); ++k)
-    if (!options.shard || static_cast<int>(k % options.shard->count) == options.shard->index - 1)
+    if ((!options.shard || static_cast<int>(k % options.shard->count) == options.shard->index - 1) &&
+        !specs[k].claims.empty())
       positions.push_back(k);
   std::vector<CaseSpec> selected;
   for (std::size_t k : positions) selected.push_back(specs[k]);
@@ -139,14 +181,16 @@ int command_run(const std::vector<std::string>& args, const std::string& command
   nlohmann::json case_paths = nlohmann::json::object();  // absolute paths: run block only
   for (std::size_t i = 0; i < selected.size(); ++i) {
     case_paths[selected[i].name] = fs::absolute(selected[i].file).lexically_normal().string();
-    if (results[i].contains("refused")) {
+    if (results[i].contains("refused") || results[i].contains("could_not_run")) {
       // The message without the file it begins with (the entry names the file).
-      std::string message = results[i]["refused"].get<std::string>();
+      const bool could_not_run = results[i].contains("could_not_run");
+      std::string message = results[i][could_not_run ? "could_not_run" : "refused"].get<std::string>();
       if (message.rfind(selected[i].file + ": ", 0) == 0)
         message.erase(0, selected[i].file.size() + 2);
       nlohmann::json entry = {{"file", report_file_name(selected[i].file)},
                               {"name", selected[i].name},
-                              {"message", message}};
+                              {"message", message},
+                              {"kind", could_not_run ? "could-not-run" : "bad-input"}};
       if (options.shard) entry["position"] = positions[i];
       refused.push_back(entry);
       continue;
@@ -168,7 +212,20 @@ int command_run(const std::vector<std::string>& args, const std::string& command
   report["run"]["overrides"] = {
       {"digits", options.digits ? nlohmann::json(*options.digits) : nlohmann::json()},
       {"scalar", options.scalar ? nlohmann::json(*options.scalar) : nlohmann::json()},
-      {"refine", options.refine}};
+      {"refine", options.refine},
+      {"claims", options.claims.empty() ? nlohmann::json() : nlohmann::json(options.claims)}};
+  // Cases --claims left without a claim: skipped, each with the claims its file lists (in a
+  // shard, only its own).
+  nlohmann::json skipped_here = nlohmann::json::array();
+  for (const auto& entry : skipped) {
+    const std::size_t k = entry["position"].get<std::size_t>();
+    if (options.shard && static_cast<int>(k % options.shard->count) != options.shard->index - 1)
+      continue;
+    nlohmann::json copy = entry;
+    if (!options.shard) copy.erase("position");
+    skipped_here.push_back(copy);
+  }
+  if (!skipped_here.empty()) report["run"]["skipped_cases"] = skipped_here;
   if (options.shard) {
     nlohmann::json suite = nlohmann::json::array();  // every shard's check that it split the same list
     for (const auto& spec : specs) suite.push_back(spec.name);

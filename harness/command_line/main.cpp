@@ -9,7 +9,8 @@
 //
 // Exit codes: 0 every claim holds (or fails as the case expects: xfail), 1 a
 // claim fails, errs or passes although marked xfail, 2 bad input (the message
-// names the file, the field and what was expected; no report is written).
+// names the file, the field and what was expected; no report is written), 3 a --jobs worker
+// ended by a signal, 4 a case could not run (its map program failed while it ran; recorded).
 #include <unistd.h>
 
 #include <algorithm>

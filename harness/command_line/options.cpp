@@ -27,6 +27,7 @@
 #include <thread>
 #include <vector>
 
+#include "cases/case_reader.hpp"
 #include "cases/catalogue.hpp"
 #include "core/platform/text.hpp"
 #include "harness/command_line/command_line.hpp"
@@ -152,6 +153,23 @@ RunOptions parse_run_options(const std::vector<std::string>& args) {
       options.keep_going = true;
     else if (arg == "--baseline")
       options.baseline = value();
+    else if (arg == "--claims") {
+      // Claim ids, comma-separated, each known to vivv (which cases list them is checked once the
+      // case files are read).
+      const std::string list = value();
+      std::size_t start = 0;
+      while (start <= list.size()) {
+        const std::size_t end = std::min(list.find(',', start), list.size());
+        const std::string id = list.substr(start, end - start);
+        const auto& known = claim_ids();
+        if (std::find(known.begin(), known.end(), id) == known.end())
+          throw BadInput("--claims: '" + std::string(cut_at_character(id, 100)) + "' is not a claim" +
+                         case_reading::did_you_mean(id, known) + "; vivv list names every claim");
+        if (std::find(options.claims.begin(), options.claims.end(), id) == options.claims.end())
+          options.claims.push_back(id);
+        start = end + 1;
+      }
+    }
     else if (arg == "--baseline-tolerance")
       // Above 0 (a constant equal to the last digit would regress) and at most 10 (×11).
       options.baseline_tolerance = parse_real(
@@ -190,13 +208,15 @@ int usage(std::ostream& out, int code) {
 int run_help(std::ostream& out) {
   out << "vivv run [CASE.json ...] [options]: compute each case's claims and write "
          "DIR/report.json,\n"
-         "report.html and junit.xml (the default suite when no case file is given). Exit 0 when "
-         "every\n"
+         "report.html, junit.xml and report.csv (the default suite when no case file is given). "
+         "Exit 0 when every\n"
          "claim passes (or fails as its case expects), 1 when one fails, is inconclusive, errs or "
          "passes\n"
          "unexpectedly, 2 for bad input (nothing written; with --keep-going, a case refused while "
-         "it "
-         "runs).\n"
+         "it runs),\n"
+         "3 when a --jobs worker is ended by a signal (nothing written), 4 when a case could not "
+         "run: its\n"
+         "map program failed while it ran (recorded in the four files, the others judged).\n"
          "  --out DIR          where the four files go (default vivv-report); checked before any "
          "case runs\n"
          "  --digits D         MPFR working precision in decimal digits, 20 … "
@@ -222,6 +242,9 @@ int run_help(std::ostream& out) {
          "tolerance, or\n"
          "                     a constant grown by more than --baseline-tolerance, is a "
          "regression (exit 1)\n"
+         "  --claims A,B       run only these of each case's claims; a case that lists none of "
+         "them is skipped\n"
+         "                     (and reported as skipped); a name no case lists is refused\n"
          "  --baseline-tolerance X\n"
          "                     the allowed growth of the error constant, a fraction (default 0.1: "
          "10 %)\n"
@@ -229,6 +252,9 @@ int run_help(std::ostream& out) {
          "recorded as\n"
          "                     refused in the reports and the others keep their results; exit "
          "still 2\n"
+         "                     (a case whose map program fails while it runs is recorded with or "
+         "without it:\n"
+         "                     it could not run, exit 4)\n"
          "  --allow-process    let cases start the programs they name (discretization kind "
          "\"process\",\n"
          "                     protocol vivv-map/1); without it such a case refuses the run\n"

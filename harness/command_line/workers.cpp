@@ -1,6 +1,7 @@
 // Running the cases of `vivv run`: one at a time or in --jobs worker processes, each under its
 // --max-seconds budget, with progress lines, and the signals that stop a run cleanly.
 #include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -70,14 +71,22 @@ extern "C" void budget_exhausted(int) {
   std::_Exit(exit_bad_input);  // nothing was written
 }
 
-// Progress on stderr: elapsed seconds and what is being computed — and, while a phase runs
-// longer than 5 s without a line of its own (the exact TQ discretization's quadrature at 1000
-// digits, a step-size probe, L_d^E), a line every 5 s saying which phase is still running and
-// for how long, from a thread that only prints. Lives for one case (in its worker, after fork).
+// In a --jobs worker, the pipe to the parent, which alone writes progress lines to stderr (-1:
+// this process writes them itself).
+int progress_fd = -1;
+
+// Progress on stderr, one line every few seconds per case (documented in README, "Progress"):
+//   [ELAPSED s] CASE: WHAT              the phase the case is in, when it changed
+//   [ELAPSED s] … still: CASE: WHAT (N s so far)   the same phase, still running
+// ELAPSED counts from the case's start. The case's first message is written at once; then a
+// thread that only prints writes the phase every `interval`, never a line per step count. Each
+// line is one write() of at most a few hundred bytes — in a worker, into the pipe the parent
+// reads (atomic below PIPE_BUF), so that lines of parallel cases never interleave. Lives for
+// one case (in its worker, after fork).
 class ProgressPrinter {
  public:
   using Clock = std::chrono::steady_clock;
-  static constexpr auto heartbeat = std::chrono::seconds(5);
+  static constexpr auto interval = std::chrono::seconds(3);
 
   ProgressPrinter() : started_(Clock::now()), last_line_(started_), phase_started_(started_) {
     thread_ = std::thread([this] { beat(); });
@@ -95,9 +104,8 @@ class ProgressPrinter {
 
   void print(const std::string& message) {
     std::lock_guard<std::mutex> lock(mutex_);
-    phase_ = message;
-    last_line_ = phase_started_ = Clock::now();
-    write(message);
+    if (message != phase_) phase_ = message, phase_started_ = Clock::now();
+    if (!written_) write(phase_), written_ = true, printed_ = phase_, last_line_ = Clock::now();
   }
 
  private:
@@ -105,25 +113,37 @@ class ProgressPrinter {
     std::unique_lock<std::mutex> lock(mutex_);
     while (!stop_) {
       wake_.wait_for(lock, std::chrono::milliseconds(250));
-      if (stop_ || phase_.empty() || Clock::now() - last_line_ < heartbeat) continue;
-      const double running = std::chrono::duration<double>(Clock::now() - phase_started_).count();
-      std::ostringstream line;
-      line << "… still: " << phase_ << " (" << std::fixed << std::setprecision(0) << running
-           << " s so far)";
-      write(line.str());
+      if (stop_ || phase_.empty() || Clock::now() - last_line_ < interval) continue;
+      if (phase_ != printed_) {
+        write(phase_);
+      } else {
+        const double running = std::chrono::duration<double>(Clock::now() - phase_started_).count();
+        std::ostringstream line;
+        line << "… still: " << phase_ << " (" << std::fixed << std::setprecision(0) << running
+             << " s so far)";
+        write(line.str());
+      }
+      printed_ = phase_;
       last_line_ = Clock::now();
     }
   }
   void write(const std::string& message) const {
     const double elapsed = std::chrono::duration<double>(Clock::now() - started_).count();
-    std::cerr << "[" << std::fixed << std::setprecision(1) << elapsed << " s] "
-              << terminal_safe(message) << "\n";
+    std::ostringstream line;
+    line << "[" << std::fixed << std::setprecision(1) << elapsed << " s] "
+         << terminal_safe(cut_at_character(message, 600)) << "\n";
+    const std::string text = line.str();
+    if (progress_fd >= 0) {
+      [[maybe_unused]] auto written = ::write(progress_fd, text.data(), text.size());
+    } else {
+      std::cerr << text << std::flush;
+    }
   }
 
   const Clock::time_point started_;
   Clock::time_point last_line_, phase_started_;
-  std::string phase_;
-  bool stop_ = false;
+  std::string phase_, printed_;
+  bool written_ = false, stop_ = false;
   std::mutex mutex_;
   std::condition_variable wake_;
   std::thread thread_;
@@ -160,6 +180,8 @@ nlohmann::json run_one(const CaseSpec& spec, const RunOptions& options) {
     return result;
   } catch (const CaseError&) {
     throw;  // names the file and the field already
+  } catch (const MapProcessError& error) {  // the program, not the input: the case could not run
+    throw CouldNotRun(spec.file + ": " + error.what());
   } catch (const SolverError& error) {
     throw BadInput(spec.file + ": " + error.what() +
                    (error.step_sizes_probed ? "" : " (reduce h: increase the step counts)"));
@@ -216,7 +238,13 @@ class NoteInterrupts {
 std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const RunOptions& options) {
   std::vector<nlohmann::json> results(specs.size());
   if (options.jobs == 1 && !options.keep_going) {
-    for (std::size_t i = 0; i < specs.size(); ++i) results[i] = run_one(specs[i], options);
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      try {
+        results[i] = run_one(specs[i], options);
+      } catch (const CouldNotRun& error) {
+        results[i] = {{"could_not_run", repaired_utf8(cut_at_character(error.what(), 2000))}};
+      }
+    }
     return results;
   }
   // A private directory (mode 0700, unpredictable name) for the workers' results, each file
@@ -225,6 +253,27 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
   if (!mkdtemp(work_template.data()))
     throw BadInput("cannot create a private temporary directory under " + fs::temp_directory_path().string());
   fs::path work = work_template;
+  // The workers' progress lines come through one pipe, and the parent alone writes them.
+  int progress_pipe[2] = {-1, -1};
+  if (options.progress && pipe2(progress_pipe, O_CLOEXEC | O_NONBLOCK) != 0)
+    progress_pipe[0] = progress_pipe[1] = -1;
+  std::string progress_buffer;
+  auto forward_progress = [&](int wait_ms) {
+    if (progress_pipe[0] < 0) {
+      const struct timespec pause = {0, wait_ms * 1'000'000L};
+      nanosleep(&pause, nullptr);
+      return;
+    }
+    struct pollfd readable = {progress_pipe[0], POLLIN, 0};
+    if (poll(&readable, 1, wait_ms) <= 0) return;
+    char chunk[4096];
+    ssize_t got = 0;
+    while ((got = ::read(progress_pipe[0], chunk, sizeof chunk)) > 0) progress_buffer.append(chunk, static_cast<std::size_t>(got));
+    const std::size_t end = progress_buffer.rfind('\n');
+    if (end == std::string::npos) return;
+    std::cerr << progress_buffer.substr(0, end + 1) << std::flush;
+    progress_buffer.erase(0, end + 1);
+  };
   NoteInterrupts notes;
   const pid_t parent = getpid();
   std::map<pid_t, std::size_t> running;
@@ -234,10 +283,7 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
   auto reap = [&]() {
     int status = 0;
     pid_t pid = 0;
-    while ((pid = waitpid(-1, &status, WNOHANG)) == 0 && !interrupted_by) {
-      const struct timespec pause = {0, 50'000'000};
-      nanosleep(&pause, nullptr);
-    }
+    while ((pid = waitpid(-1, &status, WNOHANG)) == 0 && !interrupted_by) forward_progress(50);
     if (pid <= 0) return;  // interrupted
     std::size_t index = running.at(pid);
     running.erase(pid);
@@ -248,9 +294,21 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
                  (signal == SIGKILL ? ", perhaps by the kernel for want of memory" : "") + "\n";
       return;
     }
-    if (options.keep_going && WIFEXITED(status) && WEXITSTATUS(status) == exit_bad_input) {
-      std::ifstream in(work / (std::to_string(index) + ".refused"));
+    // What the worker wrote of why its case could not run or was refused.
+    auto message_of = [&](const char* extension) {
+      std::ifstream in(work / (std::to_string(index) + extension));
       std::string message((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      return message;
+    };
+    if (WIFEXITED(status) && WEXITSTATUS(status) == exit_could_not_run) {
+      const std::string message = message_of(".could-not-run");
+      results[index] = {{"could_not_run", message.empty()
+                                              ? "its map program failed in the worker process"
+                                              : message}};
+      return;
+    }
+    if (options.keep_going && WIFEXITED(status) && WEXITSTATUS(status) == exit_bad_input) {
+      std::string message = message_of(".refused");
       while (!message.empty() && message.back() == '\n') message.pop_back();
       if (message.rfind("vivv: ", 0) == 0) message.erase(0, 6);  // the budget's stderr line
       if (const std::string unwritten = "; recorded as refused (--keep-going)";
@@ -280,6 +338,11 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
         pid = fork();
         if (pid == 0) {
           notes.restore();
+          if (progress_pipe[0] >= 0) {
+            close(progress_pipe[0]);
+            progress_fd = progress_pipe[1];
+            fcntl(progress_fd, F_SETFL, 0);  // blocking: a line is never dropped
+          }
           // A worker never outlives the run: when the parent ends, however (SIGKILL included),
           // the kernel sends the worker SIGTERM; a parent already gone ends the worker now.
           prctl(PR_SET_PDEATHSIG, SIGTERM);
@@ -295,6 +358,14 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
           write_exclusively(work / (std::to_string(next) + ".json"),
                             run_one(specs[next], options)
                                 .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+        } catch (const CouldNotRun& error) {
+          try {
+            write_exclusively(work / (std::to_string(next) + ".could-not-run"),
+                              repaired_utf8(cut_at_character(error.what(), 2000)));
+            code = exit_could_not_run;
+          } catch (const std::exception& unwritten) {
+            code = bad_input(std::string(error.what()) + " (and its record: " + unwritten.what() + ")");
+          }
         } catch (const std::exception& error) {
           // Under --keep-going the refusal is recorded, and the console lists it with the refused
           // cases: printed here as well, it appeared twice.
@@ -338,6 +409,10 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
     raise(signal);
     std::_Exit(128 + signal);
   }
+  forward_progress(0);
+  if (!progress_buffer.empty()) std::cerr << progress_buffer << "\n";
+  for (int fd : progress_pipe)
+    if (fd >= 0) close(fd);
   fs::remove_all(work);
   if (!crashes.empty())
     throw WorkerCrash(crashes + failures + "(no report written; exit " +

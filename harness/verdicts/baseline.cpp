@@ -53,6 +53,12 @@ SeriesComparison compare_series(const nlohmann::json& now, const nlohmann::json&
   const double order = now["observed_order"].get<double>(), old_order = before["observed_order"].get<double>();
   out.row["observed_order"] = order;
   out.row["baseline_order"] = old_order;
+  // The baseline's points, for the claim's plot to draw beside this run's.
+  if (before.contains("h") && before["h"].is_array() && before.contains("error") &&
+      before["error"].is_array() && before["h"].size() == before["error"].size()) {
+    out.row["baseline_h"] = before["h"];
+    out.row["baseline_error"] = before["error"];
+  }
   // The errors at the step sizes both fits used.
   std::vector<double> log_ratios;
   for (int i : now["fit_points"]["used"].get<std::vector<int>>()) {

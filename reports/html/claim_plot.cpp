@@ -38,9 +38,41 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
     }
   std::sort(tolerance_line.begin(), tolerance_line.end());
 
+  // --baseline: the baseline report's points of each compared series (claim.baseline.series[k]
+  // .baseline_h / baseline_error), drawn hollow and dashed beside this run's.
+  struct BaselinePoints {
+    std::string label, color;
+    std::vector<std::tuple<double, double, std::string>> points;  // log10 h, log10 error, title
+  };
+  std::vector<BaselinePoints> baselines;
+  const json baseline = claim.value("baseline", json::object());
+  if (baseline.is_object())
+    for (const auto& row : baseline.value("series", json::array())) {
+      if (!row.is_object() || !row.contains("baseline_h") || !row.contains("baseline_error")) continue;
+      BaselinePoints b;
+      b.label = text_of(row, "label");
+      for (std::size_t i = 0; i < series_list.size(); ++i)
+        if (text_of(series_list[i], "label") == b.label) b.color = series_colors[i % series_colors.size()];
+      if (b.color.empty()) continue;
+      const json h = row["baseline_h"], error = row["baseline_error"];
+      const auto at = [](const json& values, std::size_t i) {
+        return values.is_array() && i < values.size() && values[i].is_string() ? values[i].get<std::string>()
+                                                                               : std::string();
+      };
+      for (std::size_t i = 0; h.is_array() && i < h.size(); ++i) {
+        const auto x = log10_decimal(at(h, i)), y = log10_decimal(at(error, i));
+        if (x && y)
+          b.points.emplace_back(*x, *y, "baseline: h = " + short_decimal(at(h, i), 6) +
+                                            ", error = " + short_decimal(at(error, i), 4));
+      }
+      if (!b.points.empty()) baselines.push_back(std::move(b));
+    }
+
   // Ranges in log10.
   std::optional<double> x_low, x_high, y_low, y_high;
   for (const auto& [x, y] : tolerance_line) extend(y_low, y_high, y);
+  for (const auto& b : baselines)
+    for (const auto& [x, y, title] : b.points) extend(x_low, x_high, x), extend(y_low, y_high, y);
   bool any_zero = false;
   for (const auto& s : all)
     for (const auto& p : s.points) {
@@ -148,6 +180,20 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
     }
   }
   svg << "</g>\n";
+  // The baseline's points: hollow squares on a dashed line, in their series' colour.
+  for (const auto& b : baselines) {
+    std::string path;
+    for (const auto& [x, y, title] : b.points)
+      path += (path.empty() ? "M" : " L") + fixed(axes.px(x)) + " " + fixed(axes.py(y));
+    svg << "<g data-baseline-series=\"" << escape(b.label) << "\"><path d=\"" << path
+        << "\" fill=\"none\" stroke=\"" << b.color
+        << "\" stroke-width=\"1\" stroke-dasharray=\"3 3\" opacity=\"0.7\"/>";
+    for (const auto& [x, y, title] : b.points)
+      svg << "<rect data-baseline-point=\"1\" x=\"" << fixed(axes.px(x) - 3.5) << "\" y=\""
+          << fixed(axes.py(y) - 3.5) << "\" width=\"7\" height=\"7\" fill=\"#fff\" stroke=\"" << b.color
+          << "\" stroke-width=\"1.4\"><title>" << escape(b.label + " — " + title) << "</title></rect>";
+    svg << "</g>\n";
+  }
   // Points, each with its values and, when dropped, the reason.
   for (const auto& s : all) {
     svg << "<g data-series-label=\"" << escape(s.label) << "\">";
@@ -202,6 +248,10 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
     legend << "<li><span class=\"swatch\" style=\"background:" << s.color << "\"></span>"
            << escape(s.label) << " <span class=\"small\">" << escape(fit) << "</span></li>";
   }
+  if (!baselines.empty())
+    legend << "<li><span class=\"swatch\" style=\"background:#fff; border:1.4px solid #5b6576; "
+              "border-radius:0\"></span>the baseline report's errors (hollow squares, dashed), "
+              "beside this run's</li>";
   if (!tolerance_line.empty())
     legend << "<li><span class=\"swatch\" style=\"background:#a40e26; border-radius:0; "
               "height:3px\"></span>"

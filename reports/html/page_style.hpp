@@ -29,6 +29,7 @@ pre { background: var(--panel); padding: 8px 10px; overflow-x: auto; border-radi
 .v-inconclusive { color: #5b2a86; background: #efe4fa; border-color: #c3a3e3; }
 .note-cell { font-size: 12px; color: var(--muted); }
 .summary .verdict { font-size: 15px; padding: 4px 14px; }
+table.findings .verdict { white-space: normal; max-width: 100%; box-sizing: border-box; overflow-wrap: anywhere; }
 .attention li { margin: 5px 0; }
 ul.legend { list-style: none; padding: 0; margin: 2px 0 8px 72px; max-width: 560px; font-size: 13px; }
 ul.legend li { margin: 2px 0; overflow-wrap: anywhere; }

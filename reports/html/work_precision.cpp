@@ -19,6 +19,34 @@ namespace vivv {
 using namespace html;
 
 
+namespace {
+
+// "pendulum (k = 1), q = (1.1), w = (0.25), T = 4": the problem a group of cases shares.
+std::string problem_in_words(const json& c) {
+  std::string text = text_of(c, "system");
+  const json parameters = c.value("parameters", json());
+  if (parameters.is_object() && !parameters.empty()) {
+    std::string list;
+    for (const auto& [name, value] : parameters.items())
+      list += (list.empty() ? "" : ", ") + name + " = " +
+              (value.is_string() ? short_decimal(value.get<std::string>(), 6) : value.dump());
+    text += " (" + list + ")";
+  }
+  const json initial = c.value("initial", json());
+  for (const char* key : {"q", "w"})
+    if (initial.is_object() && initial.contains(key) && initial[key].is_array()) {
+      std::string list;
+      for (const auto& value : initial[key])
+        list += (list.empty() ? "" : ", ") + (value.is_string() ? short_decimal(value.get<std::string>(), 6) : value.dump());
+      text += std::string(", ") + key + " = (" + list + ")";
+    }
+  const json T = c.value("T", json());
+  text += ", T = " + (T.is_string() ? short_decimal(T.get<std::string>(), 6) : T.dump());
+  return text;
+}
+
+}  // namespace
+
 std::string render_work_precision(const json& cases, const json& run, bool wall_time) {
   const json run_seconds =
       run.is_object() ? run.value("run_seconds", json::object()) : json::object();
@@ -30,26 +58,41 @@ std::string render_work_precision(const json& cases, const json& run, bool wall_
     std::optional<double> floor;
   };
   std::map<std::string, std::vector<Line>> groups;
+  // Per group: its caption (the problem in words), how many cases have a global error to draw,
+  // and those whose cost is not known (a program's map: its evaluations of L are not counted).
+  std::map<std::string, std::string> captions;
+  std::map<std::string, int> members;
+  std::map<std::string, std::vector<std::string>> uncounted;
   for (const auto& c : cases) {
     if (!c.is_object()) continue;
     const json file = c.value("case_file", json::object());
     const std::string group = text_of(c, "system") + " " + c.value("parameters", json()).dump() +
                               " " + c.value("initial", json()).dump() +
                               " T = " + c.value("T", json()).dump();
+    const json claims = c.value("claims", json::array());
+    if (std::none_of(claims.begin(), claims.end(), [](const json& claim) {
+          return text_of(claim, "id") == "global-order" && !claim.value("series", json::array()).empty();
+        }))
+      continue;
+    ++members[group];
+    captions[group] = problem_in_words(c);
     // The cost of each N's run, log10: its evaluations of L, or its wall time.
     std::map<int, double> evaluations;
     if (!wall_time) {
       for (const auto& row : c.value("cost", json::array()))
-        if (row.is_object() && row.value("L_evaluations", 0L) > 0)
-          evaluations[row.value("N", 0)] =
-              std::log10(static_cast<double>(row.value("L_evaluations", 0L)));
+        if (row.is_object() && row.contains("L_evaluations") && row["L_evaluations"].is_number() &&
+            row["L_evaluations"].get<double>() > 0)
+          evaluations[row.value("N", 0)] = std::log10(row["L_evaluations"].get<double>());
     } else if (run_seconds.is_object()) {
       for (const auto& row : run_seconds.value(text_of(c, "name"), json::array()))
         if (row.is_object() && row.value("seconds", 0.0) > 0)
           evaluations[row.value("N", 0)] = std::log10(row.value("seconds", 0.0));
     }
-    if (evaluations.empty()) continue;
-    for (const auto& claim : c.value("claims", json::array())) {
+    if (evaluations.empty()) {
+      uncounted[group].push_back(text_of(c, "name"));
+      continue;
+    }
+    for (const auto& claim : claims) {
       if (text_of(claim, "id") != "global-order" || claim.value("series", json::array()).empty())
         continue;
       const json& s = claim["series"][0];
@@ -70,10 +113,12 @@ std::string render_work_precision(const json& cases, const json& run, bool wall_
         const auto e =
             error[i].is_string() ? log10_decimal(error[i].get<std::string>()) : std::nullopt;
         if (!e || !evaluations.count(steps[i])) continue;
-        line.points.emplace_back(evaluations[steps[i]], *e,
-                                 "N = " + std::to_string(steps[i]) + ": error " +
-                                     error[i].get<std::string>().substr(0, 12) + ", 10^" +
-                                     format_number(evaluations[steps[i]], 3) + " evaluations of L");
+        const double cost = std::pow(10.0, evaluations[steps[i]]);
+        line.points.emplace_back(
+            evaluations[steps[i]], *e,
+            "N = " + std::to_string(steps[i]) + ": error " + short_decimal(error[i].get<std::string>(), 4) +
+                ", " + (wall_time ? format_number(cost, 3) + " s of wall time"
+                                  : std::to_string(std::llround(cost)) + " evaluations of L"));
       }
       if (line.points.size() >= 2) groups[group].push_back(line);
     }
@@ -81,7 +126,9 @@ std::string render_work_precision(const json& cases, const json& run, bool wall_
   std::ostringstream out;
   int figure = 0;
   for (const auto& [group, lines] : groups) {
-    if (lines.size() < 2) continue;  // one method alone is no comparison
+    // One method alone is no comparison; a second whose cost is unknown still makes one, named
+    // in the caption.
+    if (members[group] < 2 || lines.empty()) continue;
     std::optional<double> x_low, x_high, y_low, y_high, floor;
     for (const auto& line : lines) {
       for (const auto& [x, y, title] : line.points) {
@@ -136,12 +183,17 @@ std::string render_work_precision(const json& cases, const json& run, bool wall_
              << "</span></li>";
     }
     legend << "</ul>";
-    out << "</svg>" << legend.str() << "<figcaption>" << escape(group)
+    std::string missing;
+    for (const auto& name : uncounted[group]) missing += (missing.empty() ? "" : ", ") + name;
+    out << "</svg>" << legend.str() << "<figcaption>" << escape(captions[group])
         << ": the global error against "
         << (wall_time ? "the wall time of each run on the machine that ran it"
                       : "the evaluations of L each run made (the same on any machine)")
-        << " (log-log; shaded: below the floor). Lower and further left is "
-           "better.</figcaption></figure>\n";
+        << " (log-log; shaded: below the floor). Lower and further left is better."
+        << (missing.empty() ? std::string()
+                            : " Not drawn, its cost unknown (a program's map: vivv does not count "
+                              "its evaluations of L): " + escape(missing) + ".")
+        << "</figcaption></figure>\n";
   }
   return out.str();
 }
