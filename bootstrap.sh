@@ -18,8 +18,12 @@ packages=(g++ cmake make ninja-build libeigen3-dev libboost-dev libmpfr-dev libg
           libvalijson-dev libgtest-dev libbenchmark-dev python3-jsonschema)
 # Only needed to test: the "browser" tests render report.html in headless Chromium, the
 # "scale" tests start shards with GNU parallel, the "python" tests run the integrators of
-# examples/python-integrator (mpmath) through the process protocol.
-if [ "$mode" = test ]; then packages+=(chromium parallel python3-mpmath); fi
+# examples/python-integrator (mpmath, NumPy) through the process protocol, the package python/
+# under pytest, and its offline installation into a venv (venv, setuptools, wheel).
+if [ "$mode" = test ]; then
+  packages+=(chromium parallel python3-mpmath python3-numpy python3-pytest python3-venv python3-setuptools
+             python3-wheel)
+fi
 missing=()
 for package in "${packages[@]}"; do
   dpkg -s "$package" >/dev/null 2>&1 || missing+=("$package")

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Renders a report.html in headless Chromium and checks the rendered DOM.
+"""Renders a report.html in headless Chromium and checks the rendered DOM (and, with a measuring
+script in a copy of the page, its layout).
 
     check_report_in_browser.py CHROMIUM REPORT_DIR SCREENSHOT.png
 
@@ -8,7 +9,10 @@ REPORT_DIR holds report.json and report.html. From Chromium's --dump-dom
 report.json has exactly one findings row (data-claim-row) and one plot
 (data-claim-plot, an <svg> with plotted points), that every claim with
 evidence "h_max_by_speed" has one map of h_max against |w| (data-claim-map, with
-points) and no other claim has one, that every verdict is shown,
+points) and no other claim has one, that every verdict is shown, the work-precision diagrams
+(both axes whenever their data exist, a program's map named where its evaluations are unknown,
+hover texts with exponents and units, captions in words), the baseline's errors beside compared
+series, no "max error 0" for what was not measured, no verdict badge outside its cell,
 and that the page loads nothing from the network. It then saves a screenshot
 of the top of the page. Exit 0 on success, 1 on a failed check, 77 (ctest's
 skip code here) when CHROMIUM is not installed.
@@ -60,7 +64,135 @@ def check_evidence_figures(report, dom, evidence, attribute, svg_class, mark, wh
     return keys, shown
 
 
+def problem_key(case):
+    return f"{case['system']} {json.dumps(case.get('parameters'))} {json.dumps(case['initial'])} {case.get('T')}"
+
+
+def check_work_precision(report, dom, problems):
+    """A diagram on each axis for each group of two or more cases of one system, parameters,
+    initial state and T with a global-order claim, when one of them has that cost (a program's map
+    has wall time but no counted evaluations: it is named in the evaluations caption instead);
+    hover texts with the error's exponent and the axis's unit; captions in words, not JSON."""
+    members = {}
+    for case in report["cases"]:
+        if any(claim["id"] == "global-order" and claim.get("series") for claim in case["claims"]):
+            members.setdefault(problem_key(case), []).append(case)
+    seconds = report["run"].get("run_seconds", {})
+    counted = lambda case: any(isinstance(row.get("L_evaluations"), int) and row["L_evaluations"] > 0  # noqa: E731
+                               for row in case.get("cost", []))
+    timed = lambda case: any(row.get("seconds", 0) > 0 for row in seconds.get(case["name"], []))  # noqa: E731
+    for axis, has_cost in (("evaluations", counted), ("seconds", timed)):
+        expected = sum(1 for cases in members.values() if len(cases) >= 2 and any(map(has_cost, cases)))
+        figures = re.findall(rf'<figure class="work-precision"><svg[^>]*data-work-precision="{axis}-\d+"(.*?)</figure>',
+                             dom, re.S)
+        if len(figures) != expected:
+            problems.append(f"{len(figures)} work-precision diagrams against {axis}, expected {expected}")
+        unit = r"\d+ evaluations of L" if axis == "evaluations" else r"[0-9.e+-]+ s of wall time"
+        for figure in figures:
+            for title in re.findall(r"<circle[^>]*><title>(.*?)</title>", figure, re.S):
+                title = html.unescape(title)
+                match = re.fullmatch(r"(.+), N = (\d+): error (\S+), (.+)", title)
+                if not match or not re.fullmatch(unit, match.group(4)):
+                    problems.append(f"work-precision ({axis}) hover text {title!r}: not 'CASE, N = n: error E, {unit}'")
+                    continue
+                case = next((c for c in report["cases"] if c["name"] == match.group(1)), None)
+                claim = next((cl for cl in case["claims"] if cl["id"] == "global-order"), None) if case else None
+                steps = case.get("sweep", {}).get("steps_used", []) if case else []
+                n = int(match.group(2))
+                if not claim or n not in steps:
+                    problems.append(f"work-precision hover text {title!r} names no point of report.json")
+                    continue
+                error = float(claim["series"][0]["error"][steps.index(n)])
+                if abs(float(match.group(3)) - error) > 1e-3 * abs(error):
+                    problems.append(f"work-precision hover text {title!r}: error {match.group(3)} is not {error:.4g}")
+            caption = re.search(r"<figcaption>(.*?)</figcaption>", figure, re.S)
+            if not caption or re.search(r"[{}\[\]]", caption.group(1)):
+                problems.append(f"work-precision caption is not in words: {caption.group(1)[:200] if caption else None!r}")
+            if axis == "evaluations":
+                for cases in members.values():
+                    for case in cases:
+                        in_figure = f'data-wp-line="{html.escape(case["name"], quote=True)}"' in figure
+                        if in_figure and not counted(case):
+                            problems.append(f"{case['name']}: drawn against evaluations it did not count")
+                        if not counted(case) and len(cases) >= 2 and any(map(counted, cases)) and \
+                                caption and case["name"] in caption.group(1) and "Not drawn" not in caption.group(1):
+                            problems.append(f"{case['name']}: its unknown cost is not named in the caption")
+
+
+def check_baseline_and_zeros(report, dom, problems):
+    """The baseline's points beside each compared series on its claim's plot, and no "max error 0"
+    for an inconclusive claim whose errors are zeros it did not measure."""
+    for case in report["cases"]:
+        for claim in case["claims"]:
+            key = html.escape(f"{case['name']}/{claim['id']}", quote=True)
+            plot = re.search(r'<svg class="plot"[^>]*data-claim-plot="' + re.escape(key) + r'"[^>]*>(.*?)</svg>', dom, re.S)
+            for row in claim.get("baseline", {}).get("series", []):
+                if row.get("baseline_h") and plot and \
+                        f'data-baseline-series="{html.escape(row["label"], quote=True)}"' not in plot.group(1):
+                    problems.append(f"{case['name']}/{claim['id']}: the baseline's errors of {row['label']!r} are not drawn")
+            errors = [e for s in claim.get("series", [])[:1] for e in s.get("error", [])]
+            if claim["verdict"] == "inconclusive" and errors and all(float(e) == 0 for e in errors):
+                row = re.search(r'<tr[^>]*data-claim-row="' + re.escape(key) + r'"[^>]*>(.*?)</tr>', dom, re.S)
+                if row and "max error 0" in row.group(1):
+                    problems.append(f"{case['name']}/{claim['id']}: 'max error 0' for errors it did not measure")
+
+
+# Measures, after layout, every verdict badge against the cell or list it sits in.
+BADGE_SCRIPT = """<script>
+(() => {
+  const outside = [];
+  try {
+    for (const badge of document.querySelectorAll(".verdict")) {
+      const holder = badge.closest("td, li, dd, div, h3, p") || document.body;
+      const box = badge.getBoundingClientRect(), cell = holder.getBoundingClientRect();
+      if (box.right > cell.right + 0.5 || box.left < cell.left - 0.5)
+        outside.push(badge.textContent + " in " + (badge.closest("tr, li") || holder).textContent.slice(0, 60));
+    }
+  } catch (error) {
+    outside.push("the measurement failed: " + error);
+  }
+  document.body.setAttribute("data-badges-outside", JSON.stringify(outside));
+})();
+</script>"""
+
+
+def check_badges_inside_cells(binary, directory, problems):
+    """No verdict badge reaches past the cell (or list item) it sits in, at 1280 and 900 px wide:
+    the page is laid out by Chromium with a measuring script added to a copy of it."""
+    with open(os.path.join(directory, "report.html")) as f:
+        page = f.read()
+    with tempfile.TemporaryDirectory(prefix="vivv-badges-") as work:
+        copy = os.path.join(work, "report.html")
+        with open(copy, "w") as f:
+            f.write(page.replace("</body>", BADGE_SCRIPT + "</body>"))
+        for width in (1280, 900):
+            dom = chromium(binary, [f"--window-size={width},3000", "--virtual-time-budget=5000", "--dump-dom",
+                                    "file://" + copy])
+            found = re.search(r'data-badges-outside="([^"]*)"', dom)
+            if not found:
+                problems.append(f"at {width} px: the badge measurement did not run")
+            elif json.loads(html.unescape(found.group(1))):
+                problems.append(f"at {width} px: verdict badges outside their cells: {html.unescape(found.group(1))[:400]}")
+
+
+def badge_self_test(binary):
+    """The badge check's negative control: a nowrap badge in a 40 px cell must be found outside it."""
+    if shutil.which(binary) is None:
+        return 77
+    with tempfile.TemporaryDirectory(prefix="vivv-badge-self-test-") as work:
+        with open(os.path.join(work, "report.html"), "w") as f:
+            f.write('<!DOCTYPE html><html><body><table style="table-layout: fixed; width: 120px"><tr>'
+                    '<td style="width: 40px"><span class="verdict" style="white-space: nowrap">inconclusive'
+                    '</span></td><td>why</td></tr></table></body></html>')
+        problems = []
+        check_badges_inside_cells(binary, work, problems)
+    print("badge self-test:", "the overflowing badge was found" if problems else "NOT found")
+    return 0 if problems else 1
+
+
 def main(argv):
+    if len(argv) == 3 and argv[2] == "--badge-self-test":
+        return badge_self_test(argv[1])
     if len(argv) != 4:
         print(__doc__, file=sys.stderr)
         return 2
@@ -160,15 +292,9 @@ def main(argv):
                 problems.append(f"{key}: judged against a tolerance at each h, but the plot has no tolerance line")
             if len(claim["series"]) == 1 and "data-fit=" in match.group(1):
                 problems.append(f"{key}: an identity plotted with a fitted order")
-    # Work-precision: a diagram for each group of two or more cases with one system, parameters,
-    # initial state and T that have a global-order claim and counted costs.
-    groups = Counter(f"{c['system']} {json.dumps(c.get('parameters'))} {json.dumps(c['initial'])} {c.get('T')}"
-                     for c in report["cases"] if c.get("cost") and any(cl["id"] == "global-order" for cl in c["claims"]))
-    expected_diagrams = sum(1 for count in groups.values() if count >= 2)
-    for axis in ("evaluations", "seconds"):
-        diagrams = len(re.findall(rf'data-work-precision="{axis}-', dom))
-        if diagrams != expected_diagrams:
-            problems.append(f"{diagrams} work-precision diagrams against {axis}, expected {expected_diagrams}")
+    check_work_precision(report, dom, problems)
+    check_baseline_and_zeros(report, dom, problems)
+    check_badges_inside_cells(binary, directory, problems)
     # report.csv beside it: one row per point of every series, with the run's cost where counted.
     import csv
     csv_path = os.path.join(directory, "report.csv")

@@ -51,6 +51,9 @@ def main(argv):
         return 2
     with open(argv[1]) as f:
         schema = json.load(f)
+    # "$id" names the schema's version ("vivv-report/6"), not a URL its "#/$defs/..." references
+    # resolve against: Debian 12's jsonschema (4.10) would resolve them to "vivv-report/vivv-report/6".
+    schema.pop("$id", None)
     validator_class = jsonschema.validators.validator_for(schema)
     validator_class.check_schema(schema)
     validator = validator_class(schema)

@@ -11,9 +11,10 @@ the case they answer beside them (*.case.json, whose command is replaced by the 
 tests/fuzz/replay_map.py serving the answers file). Every corpus file, and M deterministic
 mutations of each (seeded: the same inputs every run; an answers file has one of its lines
 mutated), goes through `vivv run` (cases and answers) or `vivv report` (reports). Each must end
-with exit 0, 1 or 2 — never a signal (abort, segfault), never a hang (each run has --max-seconds
-5, --process-timeout 5 and a 60 s limit) — and an exit 2 must say "vivv:" and leave no
-report.json. A failing input is saved in WORK_DIR/failures/ to be added to the corpus once
+with exit 0, 1, 2 or 4 — never a signal (abort, segfault), never a hang (each run has --max-seconds
+5, --process-timeout 5 and a 60 s limit) — an exit 2 must say "vivv:" and leave no
+report.json, and an exit 4 (a case that could not run) must leave report.json recording it and
+junit.xml. A failing input is saved in WORK_DIR/failures/ to be added to the corpus once
 fixed. Exit 0 when every input behaved, 1 otherwise.
 """
 import json
@@ -138,8 +139,17 @@ def check(vivv, kind, path, work, exits=None):
         exits[result.returncode] = exits.get(result.returncode, 0) + 1
     if result.returncode < 0:
         return "ended by signal %d: %s" % (-result.returncode, stderr[-300:])
-    if result.returncode not in (0, 1, 2):
+    if result.returncode not in (0, 1, 2, 4):
         return "exit %d: %s" % (result.returncode, stderr[-300:])
+    if result.returncode == 4:  # a map program that failed while its case ran: recorded, not lost
+        try:
+            refused = json.load(open(os.path.join(out, "report.json"))).get("refused", [])
+        except (OSError, ValueError) as error:
+            return "exit 4 without a readable report.json: %s" % error
+        if not any(entry.get("kind") == "could-not-run" for entry in refused):
+            return "exit 4 but report.json records no case that could not run"
+        if not os.path.exists(os.path.join(out, "junit.xml")):
+            return "exit 4 but no junit.xml"
     if result.returncode == 2:
         if "vivv:" not in stderr:
             return "exit 2 without a message: %r" % stderr[-300:]
@@ -160,6 +170,7 @@ def self_test(work):
         "segfault": "kill -SEGV $$",
         "silent exit 2": "exit 2",
         "report on exit 2": 'mkdir -p "$4"; echo {} > "$4/report.json"; echo "vivv: bad" >&2; exit 2',
+        "exit 4 without a record": 'mkdir -p "$4"; echo {} > "$4/report.json"; echo "vivv: bad" >&2; exit 4',
     }
     problems = 0
     for name, body in programs.items():

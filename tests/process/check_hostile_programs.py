@@ -7,23 +7,25 @@ usage: check_hostile_programs.py VIVV WORK_DIR VARIANT
       a correct-protocol program starts a helper that leaves its process group (setsid,
       setpgid(0, 0), a double fork); once vivv has exited, no process of the program is left.
   deep-answer, deep-decline, deep-error
-      JSON nested 120 000 deep in an answer, a refusal of the greeting and an error answer: exit 2
-      naming the depth, never a crash.
+      JSON nested 120 000 deep in an answer, a refusal of the greeting and an error answer: the
+      case could not run (exit 4, report.json and junit.xml record it) naming the depth, never a crash.
   stderr-bytes, terminal-escapes, cut-quote
       a program's stderr that is not UTF-8, one with terminal escape sequences, a line that
       vivv's quoting cuts inside a two-byte character: under --keep-going the report is written,
       UTF-8 throughout, the bytes repaired (U+FFFD), the escapes kept in report.json and shown
-      escaped on the terminal, the cut at a character boundary; without it, exit 2 with the
-      message, UTF-8 and no raw control character on the terminal.
+      escaped on the terminal, the cut at a character boundary; without it the same record (the
+      case could not run: exit 4), UTF-8 and no raw control character on the terminal.
   case-path-bytes, out-bytes
       a case file in a folder, or an --out, whose name holds bytes that are not UTF-8: the run
       ends with its verdicts and four files in UTF-8, the bytes shown as U+FFFD.
   relative-path-entry, empty-path-entry
       PATH holds a relative entry ("bin") or an empty one (the working directory): the program
-      found there is the program run, not another of the same name in the case file's folder.
+      found there is the program run, not another of the same name in the case file's folder
+      (it declines, naming itself: the case could not run, exit 4).
   overflow-float128, overflow-mpfr
       an answer of 1e999999999 (beyond float128's and MPFR's range, which would round it to
-      infinity): exit 2 naming the program, the request, the field and the number.
+      infinity): the case could not run (exit 4, recorded) naming the program, the request, the
+      field and the number.
   huge-number
       an answer of 1e300000000 in MPFR (in range; energy-behaviour once took cos(q) of it for
       minutes): within a minute, global-order and energy-behaviour inconclusive, each naming the
@@ -45,7 +47,7 @@ import uuid
 
 HERE = pathlib.Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-from check_process_maps import survivors, wait_for, write_case  # noqa: E402
+from check_process_maps import could_not_run_problems, survivors, wait_for, write_case  # noqa: E402
 
 FAULT = HERE / "fault.py"
 
@@ -95,10 +97,10 @@ def deep(vivv, work, mode, problems):
     case = write_case(work, mode, [str(FAULT), mode, "1"])
     code, out, err = run(vivv, [str(case), "--allow-process", "--out", str(work / "out"), "--quiet"])
     text = (out + err).decode(errors="replace")
-    expect(code == 2, f"exit {code} (139 is a crash): {text[-600:]}", problems)
+    expect(code == 4, f"exit {code} (139 is a crash): {text[-600:]}", problems)
     expect(re.search(r"fault\.py " + mode + r".*nested deeper than 8 levels", text),
            f"the message does not name the depth: {text[-600:]}", problems)
-    expect(not (work / "out" / "report.json").exists(), "a report was written", problems)
+    problems.extend(could_not_run_problems(work / "out", mode))
 
 
 def hostile_text(vivv, work, mode, problems):
@@ -106,7 +108,8 @@ def hostile_text(vivv, work, mode, problems):
     out_dir = work / "kept"
     code, out, err = run(vivv, [str(case), "--allow-process", "--keep-going", "--out", str(out_dir), "--quiet"])
     terminal = utf8(out + err, "the terminal's text")
-    expect(code == 2, f"--keep-going: exit {code}: {terminal[-600:]}", problems)
+    expect(code == 4, f"--keep-going: exit {code}: {terminal[-600:]}", problems)
+    problems.extend(could_not_run_problems(out_dir, mode))
     expect(not re.search("[\x00-\x08\x0b-\x1f\x7f\x80-\x9f]", terminal),
            f"a raw control character reached the terminal: {terminal[-400:]!r}", problems)
     report_path = out_dir / "report.json"
@@ -126,8 +129,9 @@ def hostile_text(vivv, work, mode, problems):
                f"not cut at a character boundary: {message[-200:]!r}", problems)
     code, out, err = run(vivv, [str(case), "--allow-process", "--out", str(work / "plain"), "--quiet"])
     terminal = utf8(out + err, "the terminal's text without --keep-going")
-    expect(code == 2 and "fault.py " + mode in terminal, f"without --keep-going: exit {code}: {terminal[-600:]}",
+    expect(code == 4 and "fault.py " + mode in terminal, f"without --keep-going: exit {code}: {terminal[-600:]}",
            problems)
+    problems.extend(f"without --keep-going: {problem}" for problem in could_not_run_problems(work / "plain", mode))
     expect(not re.search("[\x00-\x08\x0b-\x1f\x7f\x80-\x9f]", terminal),
            f"without --keep-going, a raw control character reached the terminal: {terminal[-400:]!r}", problems)
 
@@ -179,9 +183,10 @@ def path_entry(vivv, work, entry, problems):
     code, out, err = run(vivv, [str(case), "--allow-process", "--out", str(work / "out"), "--quiet"],
                          cwd=work, env={**os.environ, "PATH": path})
     text = (out + err).decode(errors="replace")
-    expect(code == 2 and "declined: RIGHT program" in text,
+    expect(code == 4 and "declined: RIGHT program" in text,
            f"PATH={path[:20]}…: exit {code}, expected the program found on PATH to decline: {text[-600:]}",
            problems)
+    problems.extend(could_not_run_problems(work / "out", "path-entry"))
 
 
 def overflow(vivv, work, scalar, problems):
@@ -191,7 +196,8 @@ def overflow(vivv, work, scalar, problems):
     case.write_text(json.dumps(spec))
     code, out, err = run(vivv, [str(case), "--allow-process", "--out", str(work / "out"), "--quiet"])
     text = (out + err).decode(errors="replace")
-    expect(code == 2, f"exit {code}: {text[-600:]}", problems)
+    expect(code == 4, f"exit {code}: {text[-600:]}", problems)
+    problems.extend(could_not_run_problems(work / "out", f"overflow-{scalar}"))
     expect(re.search(r"fault\.py overflow.*request 1 .*q\[0\]: '1\.0+e999999999' is out of range for " + scalar,
                      text), f"the message does not name program, request, field and number: {text[-600:]}",
            problems)

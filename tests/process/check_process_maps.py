@@ -1,6 +1,9 @@
-"""A map program that declines, hangs, dies or breaks protocol vivv-map/1 ends its case with exit
-2 naming the program and the request, within the timeout, with no report written and no
+"""A map program that declines, hangs, dies or breaks protocol vivv-map/1 while its case runs: the
+case could not run — exit 4 naming the program and the request, within the timeout, with
+report.json recording it (kind could-not-run) and junit.xml an error of type could-not-run, and no
 process of its left behind — also when vivv is ended by SIGINT or SIGTERM, alone or under --jobs.
+Bad input found before anything computes (not allowed, not found, a bad option) is exit 2 with
+no report.
 One that pads its answers to the digits asked for is a finding instead: symplecticity errs
 naming the evidence, the other claims are judged, and the report is written (exit 1).
 
@@ -51,6 +54,25 @@ def wait_for(condition, seconds):
             return True
         time.sleep(0.05)
     return condition()
+
+
+def could_not_run_problems(out, case_name):
+    """What is missing of the record of a case that could not run in the report directory OUT:
+    report.json refusing CASE_NAME with kind could-not-run and nothing else, junit.xml with an
+    error of type could-not-run in its testsuite. Empty when the record is whole."""
+    out = pathlib.Path(out)
+    if not (out / "report.json").exists() or not (out / "junit.xml").exists():
+        return [f"no report.json and junit.xml in {out}"]
+    report = json.loads((out / "report.json").read_text())
+    refused = report.get("refused", [])
+    problems = []
+    if [(entry["name"], entry.get("kind")) for entry in refused] != [(case_name, "could-not-run")]:
+        problems.append(f"report.json refused {refused}, expected {case_name} as could-not-run")
+    junit = (out / "junit.xml").read_text()
+    if not re.search(r'<testsuite name="' + re.escape(case_name) + r'"[^>]*errors="1"[^<]*<testcase [^>]*'
+                     r'name="could-not-run">\s*<error type="could-not-run"', junit):
+        problems.append(f"junit.xml has no could-not-run error for {case_name}: {junit[:600]}")
+    return problems
 
 
 def write_case(directory, name, command, claims=("global-order",)):
@@ -107,7 +129,7 @@ def main(argv):
     planted.kill()
     planted.wait()
 
-    def run(args, expected_exit, pattern, name, within):
+    def run(args, expected_exit, pattern, name, within, case_name=None):
         out = work / name
         shutil.rmtree(out, ignore_errors=True)  # a report left by an earlier run is not this one's
         started = time.monotonic()
@@ -123,15 +145,17 @@ def main(argv):
             problems.append(f"{name}: a sanitizer report: {message.strip()[-800:]}")
         if elapsed > within:
             problems.append(f"{name}: took {elapsed:.1f} s, more than {within} s")
-        if (out / "report.json").exists():
+        if expected_exit == 4:
+            problems.extend(f"{name}: {problem}" for problem in could_not_run_problems(out, case_name))
+        elif (out / "report.json").exists():
             problems.append(f"{name}: a report was written for bad input")
         print(f"{name}: exit {result.returncode} in {elapsed:.1f} s")
 
     for mode, good, pattern in FAULTS:
         marker = f"vivv-process-test-{uuid.uuid4().hex}"
         case = write_case(work, f"fault-{mode}", [str(FAULT), mode, str(good), marker])
-        run([str(case), "--allow-process", "--process-timeout", str(TIMEOUT)], 2,
-            r"fault\.py " + mode + r".* \(in .*\), " + pattern, mode, TIMEOUT + 10)
+        run([str(case), "--allow-process", "--process-timeout", str(TIMEOUT)], 4,
+            r"fault\.py " + mode + r".* \(in .*\), " + pattern, mode, TIMEOUT + 10, f"fault-{mode}")
         if not wait_for(lambda: not survivors(marker), 10):
             problems.append(f"{mode}: processes of the map program survived vivv: {survivors(marker)}")
 
@@ -160,13 +184,37 @@ def main(argv):
         if not wait_for(lambda: not survivors(marker), 10):
             problems.append(f"{mode}: processes of the map program survived vivv: {survivors(marker)}")
 
+    # A case that could not run beside one that did, alone and in --jobs workers: the good case
+    # keeps its verdicts in the report.
+    for jobs in ("1", "2"):
+        good = write_case(work, "good", [str(FAULT), "none"])
+        spec = json.loads(good.read_text())
+        spec["discretization"] = {"kind": "midpoint"}
+        good.write_text(json.dumps(spec))
+        crashing = write_case(work, "crashing", [str(FAULT), "exit", "2"])
+        out = work / f"mixed-{jobs}"
+        shutil.rmtree(out, ignore_errors=True)
+        result = subprocess.run([vivv, "run", str(good), str(crashing), "--allow-process", "--jobs", jobs,
+                                 "--out", str(out), "--quiet"], capture_output=True, text=True, timeout=120)
+        problems.extend(f"mixed, --jobs {jobs}: {problem}" for problem in could_not_run_problems(out, "crashing"))
+        if result.returncode != 4:
+            problems.append(f"mixed, --jobs {jobs}: exit {result.returncode}, expected 4: {result.stdout[-400:]}")
+        elif "1 case could not run (exit 4)" not in result.stdout:
+            problems.append(f"mixed, --jobs {jobs}: the console does not count it: {result.stdout[-400:]}")
+        if (out / "report.json").exists():
+            cases = json.loads((out / "report.json").read_text())["cases"]
+            if [(c["name"], [claim["verdict"] for claim in c["claims"]]) for c in cases] != [("good", ["pass"])]:
+                problems.append(f"mixed, --jobs {jobs}: the good case's verdicts were not kept: {cases}")
+        print(f"mixed, --jobs {jobs}: exit {result.returncode}")
+
     # Not allowed, not found, a relative program in the case file's folder.
     case = write_case(work, "not-allowed", [str(FAULT), "none"])
     run([str(case)], 2, r"discretization\.command.*fault\.py none.*vivv run --allow-process", "not-allowed", 10)
     case = write_case(work, "not-found", ["vivv-no-such-program", "x"])
     run([str(case), "--allow-process"], 2, r"the map program 'vivv-no-such-program' is not on PATH", "not-found", 10)
-    run([str(HERE / "process" / "relative-program-declines.json"), "--allow-process"], 2,
-        r"'\./fault\.py decline' \(in .*tests/process\), the greeting .*declined", "relative", 10)
+    run([str(HERE / "process" / "relative-program-declines.json"), "--allow-process"], 4,
+        r"'\./fault\.py decline' \(in .*tests/process\), the greeting .*declined", "relative", 10,
+        "process-relative-program-declines")
     run(["--allow-process", "--process-timeout", "0"], 2, r"--process-timeout: expected the seconds", "timeout-0", 10)
 
     # Ended by a signal while the program hangs: vivv alone, and the parent of --jobs workers.

@@ -6,8 +6,9 @@ protocol's checks in every scalar (tests/CMakeLists.txt, process/duffing-*).
 usage: duffing.py [--perturb EPS] [--padded]
 
 --perturb EPS scales each step's new momentum by 1 + EPS·h²: a map that is not symplectic by
-EPS·h² per step (symplecticity must fail). --padded computes in double and writes the digits of
-its doubles as if they were the precision asked for (the case must end with exit 2).
+EPS·h² per step (symplecticity must fail; in double too). --padded computes in double and writes the digits of
+its doubles as if they were the precision asked for (symplecticity must err: its Jacobian cannot
+be measured).
 """
 import decimal
 import json
@@ -36,6 +37,5 @@ for line in sys.stdin:
     half = p + h / 2 * force(x)
     x = x + h * half
     p = half + h / 2 * force(x)
-    if not padded:
-        p = p * (1 + perturb * h * h)
+    p = p * (1 + (float(perturb) if padded else perturb) * h * h)
     send({"q": [f"{x:.{digits - 1}e}"], "p": [f"{p:.{digits - 1}e}"]})

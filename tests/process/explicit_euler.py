@@ -6,8 +6,10 @@ tests/process/check_process_words.py reads each explanation for words of a discr
 import os
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples",
                                 "python-integrator"))
+from systems import Force  # noqa: E402
 from vivv_map import serve  # noqa: E402
 
 
@@ -17,4 +19,5 @@ def euler(h, q, p, force):
 
 
 if __name__ == "__main__":
-    serve(euler)
+    force = Force()
+    serve(lambda h, q, p: euler(h, q, p, force), setup=force.setup)

@@ -11,8 +11,7 @@ import math
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples",
-                                "python-integrator"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 from mpmath import mpf  # noqa: E402
 from vivv_map import serve  # noqa: E402
 
@@ -28,4 +27,4 @@ def verlet(h, q, p, k):
 
 
 if __name__ == "__main__":
-    serve(lambda h, q, p, force: verlet(h, q, p, mpf(1)))
+    serve(lambda h, q, p: verlet(h, q, p, mpf(1)))

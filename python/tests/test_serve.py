@@ -1,0 +1,86 @@
+"""serve() against greetings and requests written here: the digits it writes in each arithmetic,
+a declined greeting, the Jacobian extension taken up only when offered, an error answer."""
+import io
+import json
+import os
+import sys
+
+import pytest
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from vivv_map import Decline, serve  # noqa: E402
+from vivv_map.protocol import PROTOCOL  # noqa: E402
+
+
+def talk(step, lines, **options):
+    """serve()'s answers, one dict per line, to a greeting and requests."""
+    output = io.StringIO()
+    serve(step, input=io.StringIO("".join(json.dumps(line) + "\n" for line in lines)), output=output, **options)
+    return [json.loads(line) for line in output.getvalue().splitlines()]
+
+
+def greeting(digits, extensions=()):
+    return {"protocol": PROTOCOL, "digits": digits, "dimension": 1, "system": {"name": "harmonic_oscillator",
+                                                                               "params": {"omega": "1"}},
+            **({"extensions": list(extensions)} if extensions else {})}
+
+
+def euler(h, q, p):
+    return [q[0] + h * p[0]], [p[0] - h * q[0]]
+
+
+def significant(text):
+    mantissa = text.lstrip("-").split("e")[0].replace(".", "").lstrip("0")
+    return len(mantissa)
+
+
+@pytest.mark.parametrize("arithmetic, digits", [("mpmath", 40), ("decimal", 40), ("float", 17), ("numpy", 17)])
+def test_each_arithmetic_writes_the_digits_asked_for(arithmetic, digits):
+    if arithmetic == "numpy":
+        pytest.importorskip("numpy")
+    if arithmetic == "mpmath":
+        pytest.importorskip("mpmath")
+    answers = talk(euler, [greeting(digits), {"h": "0.1", "q": ["1"], "p": ["0.5"]}], arithmetic=arithmetic)
+    assert answers[0] == {"protocol": PROTOCOL}
+    q, p = answers[1]["q"][0], answers[1]["p"][0]
+    assert significant(q) == digits and significant(p) == digits, (q, p)
+    assert float(q) == pytest.approx(1.05) and float(p) == pytest.approx(0.4)
+
+
+def test_a_double_program_declines_more_digits_naming_the_case_field():
+    answers = talk(euler, [greeting(44)], arithmetic="float")
+    assert "error" in answers[0] and '"precision": "double"' in answers[0]["error"]
+
+
+def test_another_protocol_is_declined():
+    answers = talk(euler, [{"protocol": "vivv-map/2", "digits": 17, "dimension": 1, "system": {}}], arithmetic="float")
+    assert answers == [{"error": f"this program speaks {PROTOCOL}, not 'vivv-map/2'"}]
+
+
+def test_setup_declines_a_system_it_cannot_step():
+    def setup(system, dimension, number):
+        raise Decline(f"not {system['name']}")
+    answers = talk(euler, [greeting(17)], arithmetic="float", setup=setup)
+    assert answers == [{"error": "not harmonic_oscillator"}]
+
+
+def test_the_jacobian_is_sent_only_when_offered():
+    jacobian = lambda h, q, p: [[1, h], [-h, 1]]  # noqa: E731
+    request = {"h": "0.5", "q": ["1"], "p": ["0"], "jacobian": True}
+    offered = talk(euler, [greeting(17, ["jacobian"]), request, {**request, "jacobian": False}],
+                   jacobian=jacobian, arithmetic="float")
+    assert offered[0] == {"protocol": PROTOCOL, "extensions": ["jacobian"]}
+    assert [[float(x) for x in row] for row in offered[1]["jacobian"]] == [[1, 0.5], [-0.5, 1]]
+    assert all(significant(x) == 17 for row in offered[1]["jacobian"] for x in row)
+    assert "jacobian" not in offered[2]  # sent only where vivv asks for it
+    plain = talk(euler, [greeting(17), request], jacobian=jacobian, arithmetic="float")
+    assert plain[0] == {"protocol": PROTOCOL} and "jacobian" not in plain[1]
+    unasked = talk(euler, [greeting(17, ["jacobian"]), request], arithmetic="float")
+    assert unasked[0] == {"protocol": PROTOCOL}
+
+
+def test_an_exception_in_step_is_an_error_answer():
+    def broken(h, q, p):
+        raise ZeroDivisionError("h too small")
+    answers = talk(broken, [greeting(17), {"h": "0.1", "q": ["1"], "p": ["0"]}], arithmetic="float")
+    assert answers[1]["error"].startswith("ZeroDivisionError: h too small (at ")

@@ -1,0 +1,94 @@
+"""The arithmetics a map program can compute in: how a decimal string becomes a number, how a
+number is written back with D significant digits, and the precision each can carry."""
+import decimal
+
+DOUBLE_DIGITS = 17  # the significant digits that carry a double exactly (what vivv asks of one)
+
+
+class Arithmetic:
+    """name; start(digits) sets the working precision (None, or why it cannot be carried);
+    number(text) reads a decimal string; text(x) writes x with the digits asked for;
+    vector(values) what step() receives (a list, or a NumPy array)."""
+
+    name = "abstract"
+
+    def start(self, digits):
+        self.digits = digits
+        return None
+
+    def vector(self, values):
+        return list(values)
+
+
+class MpmathArithmetic(Arithmetic):
+    name = "mpmath"
+
+    def start(self, digits):
+        import mpmath
+        self.mpmath = mpmath
+        mpmath.mp.dps = digits
+        return super().start(digits)
+
+    def number(self, text):
+        return self.mpmath.mpf(text)
+
+    def text(self, x):
+        return self.mpmath.nstr(self.mpmath.mpf(x), self.digits, strip_zeros=False, min_fixed=1, max_fixed=0)
+
+
+class DecimalArithmetic(Arithmetic):
+    name = "decimal"
+
+    def start(self, digits):
+        decimal.getcontext().prec = digits
+        return super().start(digits)
+
+    def number(self, text):
+        return +decimal.Decimal(text)  # rounded to the context's precision
+
+    def text(self, x):
+        return format(+decimal.Decimal(x), "." + str(self.digits - 1) + "e")
+
+
+class FloatArithmetic(Arithmetic):
+    """Python floats (IEEE double): a program that computes in double and can carry 17 digits at
+    most. Its case declares "precision": "double", so that vivv greets every instance with 17."""
+
+    name = "float"
+
+    def start(self, digits):
+        if digits > DOUBLE_DIGITS:
+            return (f"this program computes in double precision ({self.name}: {DOUBLE_DIGITS} significant "
+                    f"digits at most) and the greeting asked for {digits}; give its case "
+                    "\"precision\": \"double\" beside \"command\" (vivv then greets every instance with 17 "
+                    "digits and differentiates the map at widths a double resolves)")
+        return super().start(digits)
+
+    def number(self, text):
+        return float(text)
+
+    def text(self, x):
+        return "%.*e" % (self.digits - 1, float(x))
+
+
+class NumpyArithmetic(FloatArithmetic):
+    """Float arithmetic with q and p given to step() as NumPy float64 arrays."""
+
+    name = "numpy"
+
+    def start(self, digits):
+        import numpy
+        self.numpy = numpy
+        return super().start(digits)
+
+    def vector(self, values):
+        return self.numpy.array(list(values), dtype=self.numpy.float64)
+
+
+ARITHMETICS = {a.name: a for a in (MpmathArithmetic, DecimalArithmetic, FloatArithmetic, NumpyArithmetic)}
+
+
+def arithmetic_named(name):
+    if name not in ARITHMETICS:
+        raise ValueError(f"unknown arithmetic {name!r}: one of {', '.join(sorted(ARITHMETICS))}")
+    return ARITHMETICS[name]()
