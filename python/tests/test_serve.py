@@ -84,3 +84,9 @@ def test_an_exception_in_step_is_an_error_answer():
         raise ZeroDivisionError("h too small")
     answers = talk(broken, [greeting(17), {"h": "0.1", "q": ["1"], "p": ["0"]}], arithmetic="float")
     assert answers[1]["error"].startswith("ZeroDivisionError: h too small (at ")
+
+
+def test_a_missing_library_declines_naming_the_interpreter(monkeypatch):
+    monkeypatch.setitem(sys.modules, "numpy", None)  # import numpy now raises ImportError
+    answers = talk(euler, [greeting(17)], arithmetic="numpy")
+    assert answers[0]["error"].startswith("this program computes with NumPy, which " + sys.executable)

@@ -1,6 +1,7 @@
 """The arithmetics a map program can compute in: how a decimal string becomes a number, how a
 number is written back with D significant digits, and the precision each can carry."""
 import decimal
+import sys
 
 DOUBLE_DIGITS = 17  # the significant digits that carry a double exactly (what vivv asks of one)
 
@@ -24,7 +25,10 @@ class MpmathArithmetic(Arithmetic):
     name = "mpmath"
 
     def start(self, digits):
-        import mpmath
+        try:
+            import mpmath
+        except ImportError:
+            return f"this program computes with mpmath, which {sys.executable} cannot import (Debian: python3-mpmath)"
         self.mpmath = mpmath
         mpmath.mp.dps = digits
         return super().start(digits)
@@ -77,7 +81,10 @@ class NumpyArithmetic(FloatArithmetic):
     name = "numpy"
 
     def start(self, digits):
-        import numpy
+        try:
+            import numpy
+        except ImportError:
+            return f"this program computes with NumPy, which {sys.executable} cannot import (Debian: python3-numpy)"
         self.numpy = numpy
         return super().start(digits)
 
