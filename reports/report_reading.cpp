@@ -72,20 +72,25 @@ std::optional<std::vector<std::size_t>> shard_positions(
     const nlohmann::json& at = shard.at("positions");
     if (!at.is_array() || at.size() != report.at("cases").size())
       throw ReportError(file + ": run.shard.positions: expected one position per case");
-    // A case --keep-going refused holds its position too (it is not in "cases").
+    // A case refused (or that could not run), and a case --claims skipped, holds its position
+    // too (it is not in "cases").
+    std::vector<std::pair<std::string, nlohmann::json>> held;  // field, entry
     const nlohmann::json refused = report.value("refused", nlohmann::json::array());
-    for (std::size_t i = 0; i < refused.size(); ++i) {
-      if (!refused[i].contains("position"))
-        throw ReportError(file + ": refused[" + std::to_string(i) +
-                          "].position: missing in a shard");
-      const auto k = refused[i]["position"].get<std::size_t>();
-      if (k >= size || refused[i].at("name") != shard["suite"][k])
-        throw ReportError(file + ": refused[" + std::to_string(i) + "]: '" +
-                          refused[i].at("name").get<std::string>() +
-                          "' is not the suite's case at position " + refused[i]["position"].dump());
+    for (std::size_t i = 0; i < refused.size(); ++i)
+      held.emplace_back("refused[" + std::to_string(i) + "]", refused[i]);
+    const nlohmann::json skipped = report["run"].value("skipped_cases", nlohmann::json::array());
+    for (std::size_t i = 0; i < skipped.size(); ++i)
+      held.emplace_back("run.skipped_cases[" + std::to_string(i) + "]", skipped[i]);
+    for (const auto& [field, entry] : held) {
+      if (!entry.contains("position"))
+        throw ReportError(file + ": " + field + ".position: missing in a shard");
+      const auto k = entry["position"].get<std::size_t>();
+      if (k >= size || entry.at("name") != shard["suite"][k])
+        throw ReportError(file + ": " + field + ": '" + entry.at("name").get<std::string>() +
+                          "' is not the suite's case at position " + entry["position"].dump());
       if (auto [it, fresh] = positions.emplace(k, file); !fresh)
-        throw ReportError(file + ": refused[" + std::to_string(i) + "].position: position " +
-                          std::to_string(k) + " is also in " + it->second);
+        throw ReportError(file + ": " + field + ".position: position " + std::to_string(k) +
+                          " is also in " + it->second);
     }
     for (std::size_t i = 0; i < at.size(); ++i) {
       const nlohmann::json& position = at[i];

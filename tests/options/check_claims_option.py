@@ -1,7 +1,8 @@
 """vivv run --claims A,B: only those claims of each case run; a case listing none of them is
 skipped and reported as skipped (console, report.json run.skipped_cases, junit.xml); a name that
 is not a claim, or that no case of the run lists, is refused with a did-you-mean (exit 2, no
-report); vivv report refuses to merge shards run with different --claims.
+report); vivv report merges shards run with the same --claims (a skipped case holds its position)
+and refuses to merge shards run with different ones.
 
 usage: check_claims_option.py VIVV WORK_DIR CASE_WITH_GLOBAL_ORDER.json CASE_WITHOUT.json
 """
@@ -53,6 +54,20 @@ def main(argv):
         if code != 2 or expected not in text or os.path.exists(os.path.join(out, "report.json")):
             problems.append(f"--claims {selection}: exit {code}, expected 2 saying \"{expected}\" and no report: {text[-600:]}")
 
+    # Two shards of one split with the same --claims merge, the skipped case holding its position.
+    for index in (1, 2):
+        code, text = run(vivv, "run", with_order, without, "--claims", "global-order", "--shard", f"{index}/2",
+                         "--out", os.path.join(work, f"same-{index}"), "--quiet")
+        if code != 0:
+            problems.append(f"same --claims, shard {index}: exit {code}: {text[-600:]}")
+    code, text = run(vivv, "report", os.path.join(work, "same-1", "report.json"),
+                     os.path.join(work, "same-2", "report.json"), "--out", os.path.join(work, "same-merged"))
+    if code != 0:
+        problems.append(f"merging shards with the same --claims: exit {code}: {text[-600:]}")
+    else:
+        merged = json.load(open(os.path.join(work, "same-merged", "report.json")))
+        if [entry["name"] for entry in merged["run"].get("skipped_cases", [])] != [names[1]]:
+            problems.append(f"the merged report's skipped cases: {merged['run'].get('skipped_cases')}")
     # Two shards of one split with different --claims do not merge.
     for index, selection in ((1, "global-order"), (2, "local-order")):
         code, text = run(vivv, "run", with_order, without, "--claims", selection, "--shard", f"{index}/2",
