@@ -3,7 +3,7 @@
 test's own), in Python's decimal at the digits vivv asks for: a map program for the process
 protocol's checks in every scalar (tests/CMakeLists.txt, process/duffing-*).
 
-usage: duffing.py [--perturb EPS] [--padded]
+usage: duffing.py [--perturb EPS] [--padded] [--jacobian [--wrong-jacobian-after K]]
 
 --perturb EPS scales each step's new momentum by 1 + EPS·h²: a map that is not symplectic by
 EPS·h² per step (symplecticity must fail; in double too). --padded computes in double and writes the digits of
@@ -16,6 +16,11 @@ import sys
 
 perturb = decimal.Decimal(sys.argv[sys.argv.index("--perturb") + 1]) if "--perturb" in sys.argv else 0
 padded = "--padded" in sys.argv
+# --jacobian: take up the extension "jacobian" and send d(x', p')/d(x, p), derived by hand;
+# --wrong-jacobian-after K: from the K-th Jacobian on, dp'/dx is 1 % too large (a planted bug).
+own_jacobian = "--jacobian" in sys.argv
+wrong_after = int(sys.argv[sys.argv.index("--wrong-jacobian-after") + 1]) if "--wrong-jacobian-after" in sys.argv else None
+jacobians = 0
 
 
 def send(message):
@@ -26,7 +31,8 @@ def send(message):
 greeting = json.loads(sys.stdin.readline())
 digits = greeting["digits"]
 decimal.getcontext().prec = digits + 5
-send({"protocol": "vivv-map/1"})
+own_jacobian = own_jacobian and "jacobian" in greeting.get("extensions", [])
+send({"protocol": "vivv-map/1", **({"extensions": ["jacobian"]} if own_jacobian else {})})
 for line in sys.stdin:
     request = json.loads(line)
     if padded:
@@ -34,8 +40,21 @@ for line in sys.stdin:
     else:
         h, x, p = (decimal.Decimal(request[k] if k == "h" else request[k][0]) for k in ("h", "q", "p"))
     force = lambda y: -y - y * y * y
+    stiffness = lambda y: -1 - 3 * y * y  # dF/dx
+    x0 = x
     half = p + h / 2 * force(x)
     x = x + h * half
     p = half + h / 2 * force(x)
-    p = p * (1 + (float(perturb) if padded else perturb) * h * h)
-    send({"q": [f"{x:.{digits - 1}e}"], "p": [f"{p:.{digits - 1}e}"]})
+    scale = 1 + (float(perturb) if padded else perturb) * h * h
+    p = p * scale
+    answer = {"q": [f"{x:.{digits - 1}e}"], "p": [f"{p:.{digits - 1}e}"]}
+    if own_jacobian and request.get("jacobian") is True:
+        dhalf_dx = h / 2 * stiffness(x0)
+        dx_dx, dx_dp = 1 + h * dhalf_dx, h
+        dp_dx = (dhalf_dx + h / 2 * stiffness(x) * dx_dx) * scale
+        dp_dp = (1 + h / 2 * stiffness(x) * dx_dp) * scale
+        jacobians += 1
+        if wrong_after is not None and jacobians > wrong_after:
+            dp_dx = dp_dx * (decimal.Decimal("1.01") if not padded else 1.01)
+        answer["jacobian"] = [[f"{v:.{digits - 1}e}" for v in row] for row in ((dx_dx, dx_dp), (dp_dx, dp_dp))]
+    send(answer)
