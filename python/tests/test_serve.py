@@ -89,4 +89,4 @@ def test_an_exception_in_step_is_an_error_answer():
 def test_a_missing_library_declines_naming_the_interpreter(monkeypatch):
     monkeypatch.setitem(sys.modules, "numpy", None)  # import numpy now raises ImportError
     answers = talk(euler, [greeting(17)], arithmetic="numpy")
-    assert answers[0]["error"].startswith("this program computes with NumPy, which " + sys.executable)
+    assert answers[0]["error"].startswith("this program computes with numpy, which " + sys.executable)

@@ -6,6 +6,14 @@ import sys
 DOUBLE_DIGITS = 17  # the significant digits that carry a double exactly (what vivv asks of one)
 
 
+def _library(name, package):
+    """The module `name`, or None with why not: the message a greeting is declined with."""
+    try:
+        return __import__(name), None
+    except ImportError:
+        return None, f"this program computes with {name}, which {sys.executable} cannot import (Debian: {package})"
+
+
 class Arithmetic:
     """name; start(digits) sets the working precision (None, or why it cannot be carried);
     number(text) reads a decimal string; text(x) writes x with the digits asked for;
@@ -25,12 +33,10 @@ class MpmathArithmetic(Arithmetic):
     name = "mpmath"
 
     def start(self, digits):
-        try:
-            import mpmath
-        except ImportError:
-            return f"this program computes with mpmath, which {sys.executable} cannot import (Debian: python3-mpmath)"
-        self.mpmath = mpmath
-        mpmath.mp.dps = digits
+        self.mpmath, reason = _library("mpmath", "python3-mpmath")
+        if reason:
+            return reason
+        self.mpmath.mp.dps = digits
         return super().start(digits)
 
     def number(self, text):
@@ -81,11 +87,9 @@ class NumpyArithmetic(FloatArithmetic):
     name = "numpy"
 
     def start(self, digits):
-        try:
-            import numpy
-        except ImportError:
-            return f"this program computes with NumPy, which {sys.executable} cannot import (Debian: python3-numpy)"
-        self.numpy = numpy
+        self.numpy, reason = _library("numpy", "python3-numpy")
+        if reason:
+            return reason
         return super().start(digits)
 
     def vector(self, values):
