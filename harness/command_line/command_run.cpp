@@ -96,7 +96,7 @@ int write_reports(const std::string& out, const nlohmann::json& report, bool ver
   std::cout << "\n";
   bool could_not_run = false;
   for (const auto& entry : report.value("refused", nlohmann::json::array())) {
-    if (entry.value("kind", "bad-input") != "could-not-run") return exit_bad_input;
+    if (!vivv::could_not_run(entry)) return exit_bad_input;
     could_not_run = true;
   }
   if (could_not_run) return exit_could_not_run;
@@ -128,10 +128,13 @@ static nlohmann::json select_claims(std::vector<CaseSpec>& specs, const std::vec
                          {"name", spec.name},
                          {"claims", spec.claims},
                          {"position", k}});
-    for (auto it = spec.xfail.begin(); it != spec.xfail.end();)
-      it = std::find(kept.begin(), kept.end(), it->first) == kept.end() ? spec.xfail.erase(it) : std::next(it);
-    for (auto it = spec.expect.begin(); it != spec.expect.end();)
-      it = std::find(kept.begin(), kept.end(), it->first) == kept.end() ? spec.expect.erase(it) : std::next(it);
+    const auto keep_only = [&kept](auto& by_claim) {
+      std::erase_if(by_claim, [&kept](const auto& entry) {
+        return std::find(kept.begin(), kept.end(), entry.first) == kept.end();
+      });
+    };
+    keep_only(spec.xfail);
+    keep_only(spec.expect);
     spec.claims = kept;
   }
   return skipped;
@@ -167,11 +170,12 @@ int command_run(const std::vector<std::string>& args, const std::string& command
                    "vivv run --allow-process");
   // Every case file is read and checked above, so that each shard refuses the same bad input;
   // a shard then computes its own positions.
+  const auto in_this_shard = [&options](std::size_t k) {
+    return !options.shard || static_cast<int>(k % options.shard->count) == options.shard->index - 1;
+  };
   std::vector<std::size_t> positions;
   for (std::size_t k = 0; k < specs.size(); ++k)
-    if ((!options.shard || static_cast<int>(k % options.shard->count) == options.shard->index - 1) &&
-        !specs[k].claims.empty())
-      positions.push_back(k);
+    if (in_this_shard(k) && !specs[k].claims.empty()) positions.push_back(k);
   std::vector<CaseSpec> selected;
   for (std::size_t k : positions) selected.push_back(specs[k]);
   std::vector<nlohmann::json> results = run_all(selected, options);
@@ -218,9 +222,7 @@ int command_run(const std::vector<std::string>& args, const std::string& command
   // shard, only its own).
   nlohmann::json skipped_here = nlohmann::json::array();
   for (const auto& entry : skipped) {
-    const std::size_t k = entry["position"].get<std::size_t>();
-    if (options.shard && static_cast<int>(k % options.shard->count) != options.shard->index - 1)
-      continue;
+    if (!in_this_shard(entry["position"].get<std::size_t>())) continue;
     nlohmann::json copy = entry;
     if (!options.shard) copy.erase("position");
     skipped_here.push_back(copy);
