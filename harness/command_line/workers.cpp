@@ -155,6 +155,12 @@ std::function<void(const std::string&)> progress_printer(bool enabled) {
   return [printer](const std::string& message) { printer->print(message); };
 }
 
+// What a refusal or a case that could not run records of its error: at most 2000 characters,
+// cut between characters, in UTF-8.
+std::string recorded_message(const std::exception& error) {
+  return repaired_utf8(cut_at_character(error.what(), 2000));
+}
+
 // Runs one case; solver failures and non-regular Lagrangians are bad input.
 nlohmann::json run_one(const CaseSpec& spec, const RunOptions& options) {
   try {
@@ -242,7 +248,7 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
       try {
         results[i] = run_one(specs[i], options);
       } catch (const CouldNotRun& error) {
-        results[i] = {{"could_not_run", repaired_utf8(cut_at_character(error.what(), 2000))}};
+        results[i] = {{"could_not_run", recorded_message(error)}};
       }
     }
     return results;
@@ -361,7 +367,7 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
         } catch (const CouldNotRun& error) {
           try {
             write_exclusively(work / (std::to_string(next) + ".could-not-run"),
-                              repaired_utf8(cut_at_character(error.what(), 2000)));
+                              recorded_message(error));
             code = exit_could_not_run;
           } catch (const std::exception& unwritten) {
             code = bad_input(std::string(error.what()) + " (and its record: " + unwritten.what() + ")");
@@ -370,7 +376,7 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
           // Under --keep-going the refusal is recorded, and the console lists it with the refused
           // cases: printed here as well, it appeared twice.
           if (refusal_fd >= 0) {
-            const std::string message = repaired_utf8(cut_at_character(error.what(), 2000));
+            const std::string message = recorded_message(error);
             [[maybe_unused]] auto written = ::write(refusal_fd, message.data(), message.size());
             code = exit_bad_input;
           } else {
