@@ -109,6 +109,17 @@ void drop_plateau(std::vector<LogPoint>& kept, std::vector<DroppedPoint>& droppe
     if (!plateau) return;
     const std::string numbers =
         "pairwise order " + format_number(last) + " vs " + format_number(rest) + " on the rest";
+    // A plateau is flat: an error above the floor that still falls like a power of h (at order
+    // plateau_minimum_order or more) is a lower-order term showing, the defect's signature, not
+    // round-off. Yoshida's composition with one weight written to 6 digits fell like h¹ above the
+    // floor, and the rule once dropped those points and quoted the orders before them.
+    if (last >= options.plateau_minimum_order) {
+      notes.push_back("at the small-h end the error still falls, at pairwise order " +
+                      format_number(last) + " (vs " + format_number(rest) + " on the rest) with error " +
+                      format_from_log(kept.back().log_error) +
+                      " above the floor: kept in the fit, as a lower-order term rather than a plateau");
+      return;
+    }
     if (!kept.back().near_floor) {
       notes.push_back("plateau at the small-h end (" + numbers + ") with error " +
                       format_from_log(kept.back().log_error) + ", more than " +

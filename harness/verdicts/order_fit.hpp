@@ -34,7 +34,9 @@ struct FitOptions {
   int minimum_points = 3;
   // Plateau: the trailing point goes while p_last < plateau_fraction · median p_rest ...
   double plateau_fraction = 0.25;
-  // ... the rest clearly converges, median p_rest >= plateau_minimum_order ...
+  // ... the rest clearly converges, median p_rest >= plateau_minimum_order, while the trailing
+  // point does not, p_last < plateau_minimum_order (a point that still falls like h^0.5 or faster
+  // is a lower-order term, evidence, never a plateau) ...
   double plateau_minimum_order = 0.5;
   // ... and e_last <= plateau_floor_factor · floor, and e_last did not grow. A plateau further
   // above the floor, or an error that grew, is a failure to converge (an inconsistent scheme, a
@@ -137,7 +139,7 @@ double median_of_finite(std::vector<double> values);
 double students_t_two_sided(double confidence, int degrees_of_freedom);
 
 // Drops trailing points of `kept` (decreasing h) while p_last < plateau_fraction · median p_rest
-// with median p_rest >= plateau_minimum_order, as "at the floor (plateau ...)".
+// with median p_rest >= plateau_minimum_order > p_last, as "at the floor (plateau ...)".
 void drop_plateau(std::vector<LogPoint>& kept, std::vector<DroppedPoint>& dropped,
                   std::vector<std::string>& notes, const FitOptions& options);
 

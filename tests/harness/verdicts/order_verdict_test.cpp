@@ -320,6 +320,86 @@ TYPED_TEST(OrderVerdictTest, AShortSweepStillRisingTowardTheOrderIsInconclusive)
   }
 }
 
+// An early point that overshoots does not refute a sweep whose last rise approaches the
+// prediction: 5.46, 1.03, 1.93 (the midpoint on a double pendulum at N = 6 … 48) against 2, and
+// 6.85, 5.53, 5.90 (a degree-3 Galerkin rule on sphere geodesics) against an exact 6, are
+// inconclusive, one more halving deciding; refined (…, 1.99, 1.998 and …, 5.98, 5.995) they pass.
+// Controls that still fail, the same overshoot before them: a last rise toward 1 (0.5, 0.9)
+// against 2; a last rise that slows short of the tolerance (1.03, 1.5, 1.65) against 2; an error
+// that grows at the end (−0.5).
+TYPED_TEST(OrderVerdictTest, AnEarlyOvershootBeforeARiseTowardTheOrderIsInconclusive) {
+  using T = TypeParam;
+  const auto verdict = [](const std::vector<std::string>& orders, double predicted, bool exact) {
+    const std::vector<T> h = geometric_steps<T>("0.125", "2", static_cast<int>(orders.size()) + 1);
+    return judge_order(fit_order(h, errors_with_pairwise_orders<T>(orders), T(0)), predicted, exact, 0.2);
+  };
+  for (bool exact : {false, true}) {
+    const OrderVerdict pendulum = verdict({"5.46", "1.03", "1.93"}, 2, exact);
+    expect_inconclusive_until_refined(pendulum, "rise toward 2");
+    EXPECT_TRUE(contains(pendulum.explanation, "after 5.46 at the largest h")) << pendulum.explanation;
+    EXPECT_TRUE(verdict({"5.46", "1.03", "1.93", "1.99", "1.998"}, 2, exact).holds);
+  }
+  expect_inconclusive_until_refined(verdict({"6.85", "5.53", "5.90"}, 6, true), "rise toward 6");
+  const OrderVerdict galerkin = verdict({"6.85", "5.53", "5.90", "5.98", "5.995"}, 6, true);
+  EXPECT_TRUE(galerkin.holds) << galerkin.explanation;
+  for (const auto& orders : std::vector<std::vector<std::string>>{
+           {"5.46", "0.5", "0.9"}, {"5.46", "1.03", "1.5", "1.65"}, {"5.46", "1.03", "1.93", "-0.5"}})
+    expect_fails(verdict(orders, 2, false));
+}
+
+// Orders that fall toward a lower bound from above with the distance to it shrinking faster than
+// their changes approach it (Heun's RK2: 2.65, 2.35, 2.14; distances 0.35 → 0.14): not receding,
+// whatever the Aitken limit of the changes says (1.65); refined (2.06, 2.03) they pass. Negative
+// control: e = h³ + 10⁻⁴·h on h = 1/8 … 1/64 — a first-order term under a third-order one — falls
+// through 2 with growing changes (2.97, 2.90, 2.65): receding, never a pass.
+TYPED_TEST(OrderVerdictTest, OrdersApproachingALowerBoundFromAboveDoNotRecede) {
+  using T = TypeParam;
+  const auto verdict = [](const std::vector<std::string>& orders) {
+    const std::vector<T> h = geometric_steps<T>("0.125", "2", static_cast<int>(orders.size()) + 1);
+    return judge_order(fit_order(h, errors_with_pairwise_orders<T>(orders), T(0)), 2, false, 0.2);
+  };
+  const OrderVerdict heun = verdict({"2.65", "2.35", "2.14"});
+  EXPECT_FALSE(heun.receding) << heun.explanation;
+  EXPECT_FALSE(contains(heun.explanation, "recedes")) << heun.explanation;
+  EXPECT_TRUE(heun.holds || heun.inconclusive) << heun.explanation;
+  const OrderVerdict refined = verdict({"2.65", "2.35", "2.14", "2.06", "2.03"});
+  EXPECT_TRUE(refined.holds) << refined.explanation;
+
+  const std::vector<T> h = geometric_steps<T>("0.125", "2", 4);
+  std::vector<T> error;
+  for (const T& step : h) error.push_back(step * step * step + from_decimal<T>("1e-4") * step);
+  const OrderFit fit = fit_order(h, error, T(0));
+  ASSERT_EQ(fit.pairwise_orders.size(), 3u);
+  EXPECT_GT(fit.pairwise_orders[0] - fit.pairwise_orders[1], 0);
+  EXPECT_GT(fit.pairwise_orders[1] - fit.pairwise_orders[2], fit.pairwise_orders[0] - fit.pairwise_orders[1]);
+  const OrderVerdict lower = judge_order(fit, 2, false, 0.2);
+  EXPECT_FALSE(lower.holds) << lower.explanation;
+}
+
+// Points above the floor that still fall like a power of h are evidence, never a plateau: pairwise
+// orders 5, 5, 5, 5, then 1, 1 (a lower-order term, as Yoshida's composition with one weight
+// written to 6 digits showed) with the last two points within 10 times the floor once had both
+// dropped as "a plateau", and passed a predicted 5 on the rest. They stay, and the claim fails on
+// them. Control: the same sweep ending flat (0.1, 0) is round-off, and passes.
+TYPED_TEST(OrderVerdictTest, ALowerOrderAboveTheFloorIsNotAPlateau) {
+  using T = TypeParam;
+  using std::pow;
+  const std::vector<T> h = geometric_steps<T>("0.125", "2", 7);
+  const T floor = pow(T(2), -24);
+  const OrderFit lower = fit_order(h, errors_with_pairwise_orders<T>({"5", "5", "5", "5", "1", "1"}), floor);
+  EXPECT_EQ(lower.used.size(), 7u);
+  const OrderVerdict verdict = judge_order(lower, 5, false, 0.2);
+  expect_fails(verdict);
+  EXPECT_TRUE(contains(verdict.explanation, "finest pairwise orders 1, 1")) << verdict.explanation;
+  ASSERT_FALSE(lower.notes.empty());
+  EXPECT_TRUE(contains(lower.notes.front(), "as a lower-order term rather than a plateau")) << lower.notes.front();
+
+  const OrderFit flat =
+      fit_order(h, errors_with_pairwise_orders<T>({"5", "5", "5", "5", "0.1", "0"}), T(pow(T(2), -22)));
+  EXPECT_EQ(flat.used.size(), 5u);
+  EXPECT_TRUE(judge_order(flat, 5, false, 0.2).holds);
+}
+
 // Every verdict names the smallest lower-order share b it could have caught: e = h² on h = 1/8 …
 // 1/256 passes, and e = h²·(1 + b·h_min/h) just above the b it names does not pass, just below it
 // does — the limit is what the rule does, not a formula beside it.
