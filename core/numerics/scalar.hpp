@@ -6,6 +6,8 @@
 // their traits live.
 #pragma once
 
+#include <initializer_list>
+
 #include <Eigen/Dense>
 #include <boost/multiprecision/eigen.hpp>
 #include <boost/multiprecision/float128.hpp>
@@ -168,6 +170,33 @@ std::string to_decimal_tuple(const Vector<T, n>& v, int digits = 8) {
   std::string text = "(";
   for (int i = 0; i < v.size(); ++i) text += (i ? ", " : "") + to_decimal<T>(v[i], digits);
   return text + ")";
+}
+
+// max(a, b), NaN when either is NaN: std::max(a, NaN) returns a, so that a NaN in a measurement
+// would vanish into a reduction (and a claim pass on the rest).
+template <class T>
+T nan_max(const T& a, const T& b) {
+  using std::isnan;
+  if (isnan(a)) return a;
+  if (isnan(b)) return b;
+  return a < b ? b : a;
+}
+
+// min(a, b), NaN when either is NaN.
+template <class T>
+T nan_min(const T& a, const T& b) {
+  using std::isnan;
+  if (isnan(a)) return a;
+  if (isnan(b)) return b;
+  return b < a ? b : a;
+}
+
+// The largest of `values`, NaN when any is NaN.
+template <class T>
+T nan_max(std::initializer_list<T> values) {
+  T largest = *values.begin();
+  for (const T& value : values) largest = nan_max(largest, value);
+  return largest;
 }
 
 // Max norm of a vector; NaN if a component is NaN (std::max would drop it and report 0).

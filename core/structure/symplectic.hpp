@@ -34,13 +34,13 @@ Matrix<T, 2 * n, 2 * n> del_map_jacobian(const DiscreteLegendre<T, n>& future, c
   return jacobian;
 }
 
-// max |a_ij|.
+// max |a_ij|; NaN when an entry is NaN (a Jacobian whose JᵀΩJ overflowed must not measure 0).
 template <class T, int rows, int cols>
 T max_entry(const Matrix<T, rows, cols>& a) {
-  using std::abs, std::max;
+  using std::abs;
   T largest = 0;
-  for (int i = 0; i < rows; ++i)
-    for (int j = 0; j < cols; ++j) largest = max(largest, T(abs(a(i, j))));
+  for (int i = 0; i < a.rows(); ++i)
+    for (int j = 0; j < a.cols(); ++j) largest = nan_max(largest, T(abs(a(i, j))));
   return largest;
 }
 
@@ -97,8 +97,8 @@ JacobianAgreement<T> compare_with_differences(const Map& map, const Vector<T, m>
                         fine = differences(T(1) / 4);
   JacobianAgreement<T> out;
   out.mismatch = max_entry<T, m, m>(Matrix<T, m, m>(jacobian - coarse));
-  const T change = max(max_entry<T, m, m>(Matrix<T, m, m>(coarse - middle)),
-                       max_entry<T, m, m>(Matrix<T, m, m>(middle - fine)));
+  const T change = nan_max(max_entry<T, m, m>(Matrix<T, m, m>(coarse - middle)),
+                           max_entry<T, m, m>(Matrix<T, m, m>(middle - fine)));
   out.allowed = 4 * change + sqrt(epsilon<T>()) * max_entry<T, m, m>(jacobian);
   out.holds = out.mismatch <= out.allowed;
   return out;

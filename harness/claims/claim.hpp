@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "harness/context/case_context.hpp"
+#include "harness/verdicts/finite_measurement.hpp"
 #include "harness/verdicts/series.hpp"
 
 namespace vivv {
@@ -54,6 +55,13 @@ struct Claim {
                           "; to decide: steps small enough for the map to stay within the "
                           "problem's scale (larger step counts), or a map that does not diverge";
       claim.evidence["divergence"] = {{"h", diverged.h}, {"message", diverged.what()}};
+    } catch (const NonFiniteMeasurement& non_finite) {
+      // A NaN or an infinity where a number was measured: no verdict either way.
+      claim = result();
+      claim.verdict = "error";
+      claim.explanation = non_finite.what();
+      claim.evidence["non_finite_measurement"] = non_finite.what();
+      claim.detection_limit = "none: the measurement was not a finite number";
     } catch (const UnmeasurableJacobian& unmeasurable) {
       // The measurement cannot be trusted: the claim errs, the case's other claims are judged.
       claim = result();
@@ -171,8 +179,11 @@ struct PerStepCheck {
 
   // Records `value` at h against `tolerance`; `row` may carry more columns, and
   // `also` a further condition the step must meet (its columns in `row`).
+  // A value or tolerance that is not a finite number throws NonFiniteMeasurement.
   bool add(const T& h, const T& value, const T& tolerance, nlohmann::json row = nlohmann::json::object(),
            bool also = true) {
+    require_finite(value, "at h = " + format_scalar(h, 6) + " the measured value");
+    require_finite(tolerance, "at h = " + format_scalar(h, 6) + " the tolerance");
     const bool ok = value <= tolerance && also;
     if (!ok) {
       // Compared as value·tolerance' > value'·tolerance: no division by a zero tolerance.

@@ -74,8 +74,8 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
                     "sqrt or log of a negative number, a division by zero)");
           if (k == 0) first = J;
           T terms = max_norm<T, n>(p[k]);
-          if (k % stride == 0 || k == N - 1) terms = max(terms, momentum_terms(context, q[k], w[k]));
-          size = max(size, T(terms * max_norm<T, n>(xi)));
+          if (k % stride == 0 || k == N - 1) terms = nan_max(terms, momentum_terms(context, q[k], w[k]));
+          size = nan_max(size, T(terms * max_norm<T, n>(xi)));
           if (abs(T(J - first)) > drift) drift = abs(T(J - first)), worst_step = k;
         }
         if (!(size > 0))
@@ -144,7 +144,7 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
     using std::max;
     const auto d = lagrangian_derivatives(context.system, q, w);
     const Vector<T, n> kinetic = d.d2L_dw2 * w;
-    return max(max_norm<T, n>(d.dL_dw), max(max_norm<T, n>(kinetic), max_norm<T, n>(Vector<T, n>(d.dL_dw - kinetic))));
+    return nan_max(max_norm<T, n>(d.dL_dw), nan_max(max_norm<T, n>(kinetic), max_norm<T, n>(Vector<T, n>(d.dL_dw - kinetic))));
   }
 
   // A drift beyond `ulps` units that does not fall with h (the finest step's is at least the

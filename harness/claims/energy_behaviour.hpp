@@ -96,8 +96,8 @@ SectionTrend<T> section_trend(const T& h, const std::vector<T>& e, std::vector<T
   for (auto& value : v) {
     value *= direction;
     level += value;
-    low = min(low, value);
-    high = max(high, value);
+    low = nan_min(low, value);
+    high = nan_max(high, value);
   }
   level /= T(static_cast<int>(N));
   const T half_range = (high - low) / 2;
@@ -136,7 +136,7 @@ SectionTrend<T> section_trend(const T& h, const std::vector<T>& e, std::vector<T
   mean_t /= T(static_cast<int>(cycles)), mean_e /= T(static_cast<int>(cycles));
   for (std::size_t j = 0; j < cycles; ++j)
     trend.scatter =
-        max(trend.scatter, T(abs(T(mean[j] - (mean_e + slope * (middle[j] - mean_t))))));
+        nan_max(trend.scatter, T(abs(T(mean[j] - (mean_e + slope * (middle[j] - mean_t))))));
   trend.drift = slope * T(static_cast<int>(N)) * h;
   const T first_half = least_squares_slope(middle, mean, 0, cycles - cycles / 2);
   const T second_half = least_squares_slope(middle, mean, cycles / 2, cycles);
@@ -184,11 +184,11 @@ EnergyDrift<T> measure_energy_drift(const T& h, const std::vector<T>& energies,
   T largest = 0, low = 0, high = 0;
   for (std::size_t k = 0; k < N; ++k) {
     e[k] = energies[k] - energies[0];
-    largest = max(largest, T(abs(e[k])));
-    low = min(low, e[k]), high = max(high, e[k]);
+    largest = nan_max(largest, T(abs(e[k])));
+    low = nan_min(low, e[k]), high = nan_max(high, e[k]);
   }
   drift.spread = high - low;
-  drift.rounding = T(static_cast<int>(N)) * ulps * epsilon<T>() * max(size, T(abs(energies[0])));
+  drift.rounding = T(static_cast<int>(N)) * ulps * epsilon<T>() * nan_max(size, T(abs(energies[0])));
   if (largest <= drift.rounding) {
     drift.status = "floor";
     return drift;
@@ -196,7 +196,7 @@ EnergyDrift<T> measure_energy_drift(const T& h, const std::vector<T>& energies,
   std::vector<std::pair<T, int>> ranges;  // (range, component), widest first
   for (int i = 0; i < n; ++i) {
     T lo = velocities[0][i], hi = lo;
-    for (const auto& w : velocities) lo = min(lo, w[i]), hi = max(hi, w[i]);
+    for (const auto& w : velocities) lo = nan_min(lo, w[i]), hi = nan_max(hi, w[i]);
     ranges.push_back({hi - lo, i});
   }
   std::sort(ranges.begin(), ranges.end(),
@@ -219,11 +219,11 @@ EnergyDrift<T> measure_energy_drift(const T& h, const std::vector<T>& energies,
   T smallest = abs(trends[0].drift), lowest = trends[0].drift, highest = trends[0].drift;
   bool same_sign = true, linear = true;
   for (const auto& trend : trends) {
-    smallest = min(smallest, T(abs(trend.drift)));
-    lowest = min(lowest, trend.drift), highest = max(highest, trend.drift);
+    smallest = nan_min(smallest, T(abs(trend.drift)));
+    lowest = nan_min(lowest, trend.drift), highest = nan_max(highest, trend.drift);
     same_sign = same_sign && (trend.drift > 0) == (trends[0].drift > 0);
     linear = linear && trend.linear;
-    drift.scatter = max(drift.scatter, trend.scatter);
+    drift.scatter = nan_max(drift.scatter, trend.scatter);
   }
   drift.drift = same_sign ? smallest : T(0);
   drift.systematic = highest - lowest;
@@ -400,7 +400,7 @@ Series energy_size_series(const CaseContext<System>& context,
   using T = typename System::Scalar;
   using std::max;
   T rounding = 0;
-  for (const auto& run : runs) rounding = max(rounding, run.rounding);
+  for (const auto& run : runs) rounding = nan_max(rounding, run.rounding);
   Floor<T> floor;
   floor.rounding = T(1000) * rounding;
   floor.reference = 0;  // E_k − E_0 involves no reference
@@ -434,9 +434,13 @@ struct EnergyBehaviourClaim : Claim<EnergyBehaviourClaim> {
     nlohmann::json against_t = nlohmann::json::array();
     const auto judge = [&](const std::vector<T>& energies,
                            const std::vector<Vector<T, n>>& velocities, const T& size, const T& h) {
+      for (std::size_t k = 0; k < energies.size(); ++k)
+        require_finite(energies[k], "the energy at step " + std::to_string(k) + " of the run with h = " +
+                                        format_scalar(h, 6));
+      require_finite(size, "the size |p·w| of the run with h = " + format_scalar(h, 6));
       against_t.push_back(energy_error_against_t(h, energies));
       T largest = 0;
-      for (const T& energy : energies) largest = max(largest, T(abs(T(energy - energies.front()))));
+      for (const T& energy : energies) largest = nan_max(largest, T(abs(T(energy - energies.front()))));
       largest_error.push_back(largest);
       runs.push_back(measure_energy_drift<T, n>(h, energies, velocities, size));
     };
@@ -448,7 +452,7 @@ struct EnergyBehaviourClaim : Claim<EnergyBehaviourClaim> {
         for (std::size_t k = 0; k + 1 < x.size(); ++k) {
           energies.push_back(energy(context.system, x[k].q, x[k].w));
           velocities.push_back(x[k].w);
-          size = max(size, T(abs(T(momentum(context.system, x[k].q, x[k].w).dot(x[k].w)))));
+          size = nan_max(size, T(abs(T(momentum(context.system, x[k].q, x[k].w).dot(x[k].w)))));
         }
         judge(energies, velocities, size, h);
       });
@@ -464,7 +468,7 @@ struct EnergyBehaviourClaim : Claim<EnergyBehaviourClaim> {
           const Vector<T, n> w = velocity_for_momentum(context.system, q[k], p, Vector<T, n>((q[k + 1] - q[k]) / h));
           energies.push_back(energy(context.system, q[k], w));
           velocities.push_back(w);
-          size = max(size, T(abs(T(p.dot(w)))));
+          size = nan_max(size, T(abs(T(p.dot(w)))));
         }
         judge(energies, velocities, size, h);
       });

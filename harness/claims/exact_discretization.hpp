@@ -34,7 +34,7 @@ struct ExactDiscretizationClaim : Claim<ExactDiscretizationClaim> {
       context.report("exact-discretization at h = " + to_decimal<T>(h, 6));
       State<T, n> exact = context.exact(h);
       const State<T, n> evolved = tq_map(context, *context.tq, h);
-      T scale = max(T(1), max(max_norm<T, n>(exact.q), max_norm<T, n>(exact.w)));
+      T scale = nan_max(T(1), nan_max(max_norm<T, n>(exact.q), max_norm<T, n>(exact.w)));
       check.add(h, state_distance(evolved, exact), T(tolerance_factor * context.reference.tolerance() * scale));
       if (theta != 0)
         printed.push_back({{"h", to_decimal<T>(h)},

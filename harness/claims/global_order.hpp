@@ -238,7 +238,7 @@ struct GlobalOrderClaim : Claim<GlobalOrderClaim> {
     }
     claim.series.push_back(sweep_series(context, "|q_N − q(T)|", q_error, predicted(context)));
     using std::max;
-    const T size = max({max_norm<T, n>(context.initial.q), max_norm<T, n>(final_state.q),
+    const T size = nan_max({max_norm<T, n>(context.initial.q), max_norm<T, n>(final_state.q),
                         max_norm<T, n>(Vector<T, n>(final_state.q - context.initial.q))});
     unresolved_motion_is_inconclusive(claim.series.back(), size, context.order_tolerance,
                                       context.spec.steps.back());

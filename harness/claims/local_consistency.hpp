@@ -30,7 +30,7 @@ void judge_signed_coefficient(Series& series, const std::vector<T>& coefficient,
   // digits), and the coefficient's error bar would be rounding.
   if (N < 2 || series.inconclusive) return;
   T bar = abs(T(coefficient[N - 1] - coefficient[N - 2]));
-  if (N >= 3) bar = max(bar, T(abs(T(coefficient[N - 2] - coefficient[N - 3])) / 2));
+  if (N >= 3) bar = nan_max(bar, T(abs(T(coefficient[N - 2] - coefficient[N - 3])) / 2));
   const T distance = abs(T(coefficient[N - 1] - leading));
   const T allowed = 3 * bar + floor;
   series.rule = "signed-coefficient";
@@ -123,12 +123,12 @@ void add_exact_coefficients(ClaimResult& claim, const CaseContext<System>& conte
       return;
     }
     times.push_back(t);
-    for (int k = 0; k <= r; ++k) size[k] = max(size[k], sizes[k]);
+    for (int k = 0; k <= r; ++k) size[k] = nan_max(size[k], sizes[k]);
     if (r >= 1) {
       const Vector<T, n> p = momentum(context.system, x.q, x.w);
       T pw = 0;
       for (int i = 0; i < n; ++i) pw += p[i] * x.w[i];
-      size[1] = max(size[1], max(abs(pw), abs(T(pw - context.system.lagrangian(as_point<T, n>(x.q), as_point<T, n>(x.w))))));
+      size[1] = nan_max(size[1], nan_max(abs(pw), abs(T(pw - context.system.lagrangian(as_point<T, n>(x.q), as_point<T, n>(x.w))))));
     }
   }
   const std::vector<T> steps = context.steps();
@@ -142,7 +142,7 @@ void add_exact_coefficients(ClaimResult& claim, const CaseContext<System>& conte
     for (int k = 0; k <= r; ++k) {
       const T unit = epsilon<T>() * size[k];
       const T magnitude = abs(expansion[k]);
-      if (magnitude > 0) worst = max(worst, unit > 0 ? T(magnitude / unit) : T(INFINITY));
+      if (magnitude > 0) worst = nan_max(worst, unit > 0 ? T(magnitude / unit) : T(INFINITY));
       coefficients.push_back({{"k", k}, {"E_k", to_decimal<T>(expansion[k], 8)}});
       if (magnitude > rounding_units * unit && failure.empty())
         failure = "the coefficient of h^" + std::to_string(k) + " of L_d − L_d^E is " + format_scalar(expansion[k], 4) +
@@ -157,8 +157,8 @@ void add_exact_coefficients(ClaimResult& claim, const CaseContext<System>& conte
         sum += expansion[k] * pow(steps[i], k);
         bound += rounding_units * epsilon<T>() * size[k] * pow(steps[i], k);
       }
-      part[i] = max(part[i], abs(sum));
-      allowed[i] = max(allowed[i], bound);
+      part[i] = nan_max(part[i], abs(sum));
+      allowed[i] = nan_max(allowed[i], bound);
     }
     rows.push_back({{"t", to_decimal<T>(times[j], 8)}, {"coefficients", coefficients}});
   }
@@ -218,7 +218,7 @@ struct LagrangianOrderClaim : Claim<LagrangianOrderClaim> {
         throw SolverError("exact discrete Lagrangian at h = " + to_decimal<T>(h, 17) +
                           ": shooting did not converge (residual " + to_decimal<T>(exact.residual) + ")");
       using std::max;
-      velocity_mismatch = max(velocity_mismatch, max_norm<T, n>(exact.w_begin - context.initial.w));
+      velocity_mismatch = nan_max(velocity_mismatch, max_norm<T, n>(exact.w_begin - context.initial.w));
       nodes = exact.quadrature_nodes;
       T discrete = discrete_lagrangian(context.system, context.scheme.future, as_point<T, n>(context.initial.q),
                                        as_point<T, n>(q_end), h);

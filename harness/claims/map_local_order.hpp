@@ -56,17 +56,17 @@ struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
       const T t = context.final_time * T(j) / T(states);
       const State<T, n> x = j == 0 ? context.initial : context.reference.advance(context.initial, t);
       const Vector<T, n> p = momentum(context.system, x.q, x.w);
-      T scale = max(max_norm<T, n>(x.q), max_norm<T, n>(p));
+      T scale = nan_max(max_norm<T, n>(x.q), max_norm<T, n>(p));
       std::vector<T> error, used_h;
       const auto measure = [&](const T& h) -> std::optional<T> {
         context.report("local-order: one step from x(" + format_scalar(t, 4) + ") at h = " + to_decimal<T>(h, 6));
         const State<T, n> exact = context.reference.advance(x, h);
         const auto [q1, p1] = one_step(context, x, h);
         const Vector<T, n> p_exact = momentum(context.system, exact.q, exact.w);
-        const T e = max(max_norm<T, n>(Vector<T, n>(q1 - exact.q)), max_norm<T, n>(Vector<T, n>(p1 - p_exact)));
+        const T e = nan_max(max_norm<T, n>(Vector<T, n>(q1 - exact.q)), max_norm<T, n>(Vector<T, n>(p1 - p_exact)));
         using std::isfinite;
         if (!isfinite(e)) return std::nullopt;
-        scale = max(scale, max(max_norm<T, n>(Vector<T, n>(exact.q - x.q)), max_norm<T, n>(Vector<T, n>(p_exact - p))));
+        scale = nan_max(scale, nan_max(max_norm<T, n>(Vector<T, n>(exact.q - x.q)), max_norm<T, n>(Vector<T, n>(p_exact - p))));
         return e;
       };
       for (const T& h : steps) {

@@ -69,11 +69,11 @@ struct ModifiedEnergyClaim : Claim<ModifiedEnergyClaim> {
         const Vector<T, n>& p = (*momenta)[k];
         const ModifiedEnergy<T> E = modified_energy(context.system, form, q[k], p, h);
         if (k == 0) H0 = E.H, modified0 = E.modified;
-        largest_H = max(largest_H, T(abs(T(E.H - H0))));
-        largest_modified = max(largest_modified, T(abs(T(E.modified - modified0))));
+        largest_H = nan_max(largest_H, T(abs(T(E.H - H0))));
+        largest_modified = nan_max(largest_modified, T(abs(T(E.modified - modified0))));
         modified.push_back(E.modified);
         velocities.push_back(p);
-        size = max(size, T(p.dot(p)));
+        size = nan_max(size, T(p.dot(p)));
       }
       energy_error.push_back(largest_H);
       modified_error.push_back(largest_modified);

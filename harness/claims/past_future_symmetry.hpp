@@ -51,7 +51,7 @@ struct PastFutureSymmetryClaim : Claim<PastFutureSymmetryClaim> {
       auto two = tq_critical_pair(context.system, second, second, q_minus, q_plus, h);
       require_converged(two.report, "second critical pair at h = " + to_decimal<T>(h, 17));
       Vector<T, n> dw = two.v.w - one.v.w, dw_next = two.v_next.w - one.v_next.w;
-      difference.push_back(max(max_norm<T, n>(dw), max_norm<T, n>(dw_next)));
+      difference.push_back(nan_max(max_norm<T, n>(dw), max_norm<T, n>(dw_next)));
       asymmetry.push_back(max_norm<T, n>(Vector<T, n>(dw - dw_next)));
       rows.push_back({{"h", to_decimal<T>(h)},
                       {"delta_w", to_decimal<T>(max_norm<T, n>(dw))},

@@ -273,10 +273,11 @@ struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {
       const T h = h_min * pow(T(10), T(-k) / points_per_decade);
       context.report("precision-leak: local defect at " + std::to_string(digits) + " digits, h = " + format_scalar(h, 4));
       const auto [defect, rounding_level] = relative_local_defect(context, h);
+      require_finite(defect, "the local defect at " + std::to_string(digits) + " digits, h = " + format_scalar(h, 4));
       // An exact zero or a point below one rounding of the answer is luck (a program's rounded
       // answer equal to vivv's rounded F_h), not a floor: it counts at the rounding level.
-      const T counted = max(defect, rounding_level);
-      if (k > 0) floor = floor < 0 ? max(previous, counted) : min(floor, max(previous, counted));
+      const T counted = nan_max(defect, rounding_level);
+      if (k > 0) floor = floor < 0 ? nan_max(previous, counted) : nan_min(floor, nan_max(previous, counted));
       previous = counted;
       series.h.push_back(to_decimal<T>(h));
       series.error.push_back(to_decimal<T>(defect));
@@ -284,7 +285,7 @@ struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {
       result.log10_defect.push_back(defect > 0 ? static_cast<double>(log10(defect))
                                                : -std::numeric_limits<double>::infinity());
     }
-    floor = max(floor, epsilon<T>());
+    floor = nan_max(floor, epsilon<T>());
     series.floor = to_decimal<T>(floor);
     result.floor = format_scalar(floor, 4);
     result.log10_floor = static_cast<double>(log10(floor));
@@ -316,10 +317,10 @@ struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {
       p1 = p_end(system, context.scheme.future, x0.q, q1, h);
     }
     const Vector<T, n> p0 = momentum(system, x0.q, x0.w), p_exact = momentum(system, exact.q, exact.w);
-    const T error = max(max_norm<T, n>(q1 - exact.q), max_norm<T, n>(p1 - p_exact));
-    const T motion = max(max_norm<T, n>(exact.q - x0.q), max_norm<T, n>(p_exact - p0));
+    const T error = nan_max(max_norm<T, n>(q1 - exact.q), max_norm<T, n>(p1 - p_exact));
+    const T motion = nan_max(max_norm<T, n>(exact.q - x0.q), max_norm<T, n>(p_exact - p0));
     // One rounding of the answer, relative to the motion: ε·max(|q1|, |p1|)/motion.
-    const T size = max(max_norm<T, n>(q1), max_norm<T, n>(p1));
+    const T size = nan_max(max_norm<T, n>(q1), max_norm<T, n>(p1));
     return {error / motion, epsilon<T>() * size / motion};
   }
 };

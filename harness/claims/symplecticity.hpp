@@ -94,7 +94,7 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
                   ? discrete_legendre(context.system, context.scheme.past, q[k], q[k + 1], h)
                   : future;
           jacobians.push_back(del_map_jacobian<T, n>(future, past));
-          sizes.push_back(max({T(1), max_entry<T, n, n>(future.dp_begin_dq_b), max_entry<T, n, n>(future.dp_begin_dq_e),
+          sizes.push_back(nan_max({T(1), max_entry<T, n, n>(future.dp_begin_dq_b), max_entry<T, n, n>(future.dp_begin_dq_e),
                                max_entry<T, n, n>(past.dp_end_dq_b), max_entry<T, n, n>(past.dp_end_dq_e)}));
         }
         std::size_t worst = 0;
@@ -157,6 +157,9 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
                                       const Vector<T, m>& y, const Matrix<T, m, m>& jacobian,
                                       const Vector<T, m>& scale) {
     const JacobianAgreement<T> agreement = compare_with_differences<T, m>(map, y, jacobian, scale);
+    const std::string at = "at h = " + format_scalar(h, 6) + ", step " + std::to_string(step) + " ";
+    require_finite(agreement.mismatch, at + "the Jacobian's distance from central differences of its map");
+    require_finite(agreement.allowed, at + "the allowance of the Jacobian's check against differences");
     JacobianCheck out;
     out.holds = agreement.holds;
     out.row = {{"h", to_decimal<T>(h)},
@@ -216,18 +219,27 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
     T worst_ratio = -1, worst_defect = 0, worst_tolerance = 0, largest_defect = 0, step_tolerance = 0;
     for (int k = 0; k < N; ++k) {
       composition = jacobians[k] * composition;
-      const T entry = max(T(1), max_entry<T, 2 * n, 2 * n>(jacobians[k]));
+      const T entry = nan_max(T(1), max_entry<T, 2 * n, 2 * n>(jacobians[k]));
       const T tolerance = ulps * unit * sizes[k] * entry * entry;
       const T defect = symplecticity_defect<T, 2 * n>(jacobians[k]);
-      step_tolerance = max(step_tolerance, tolerance);
-      largest_defect = max(largest_defect, defect);
+      const std::string where = "at h = " + format_scalar(h, 6) + ", step " + std::to_string(k) + " of " +
+                                std::to_string(N) + " (the Jacobian's largest entry " +
+                                format_scalar(max_entry<T, 2 * n, 2 * n>(jacobians[k]), 3) + ")";
+      require_finite(defect, where + " |JᵀΩJ − Ω|");
+      require_finite(tolerance, where + " its tolerance");
+      step_tolerance = nan_max(step_tolerance, tolerance);
+      largest_defect = nan_max(largest_defect, defect);
       if (defect / tolerance > worst_ratio)
         worst_ratio = defect / tolerance, worst_defect = defect, worst_tolerance = tolerance,
         worst_step = static_cast<std::size_t>(k);
     }
-    const T composed = max(T(1), max_entry<T, 2 * n, 2 * n>(composition));
+    const T composed = nan_max(T(1), max_entry<T, 2 * n, 2 * n>(composition));
     const T composite_defect = symplecticity_defect<T, 2 * n>(composition);
     const T composite_tolerance = T(N) * step_tolerance * composed * composed;
+    const std::string composite = "at h = " + format_scalar(h, 6) + " the " + std::to_string(N) +
+                                  "-step composition's ";
+    require_finite(composite_defect, composite + "|JᵀΩJ − Ω|");
+    require_finite(composite_tolerance, composite + "tolerance");
     check.add(h, worst_defect, worst_tolerance,
               {{"N", N},
                {"largest_step_defect", to_decimal<T>(largest_defect)},

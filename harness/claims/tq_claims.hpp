@@ -118,9 +118,9 @@ struct QxQTQEquivalenceClaim : Claim<QxQTQEquivalenceClaim> {
       T gap = 0, scale = 1;
       for (int k = 0; k <= compared_steps; ++k) {
         auto v = tangent_point(states[k]);
-        gap = max(gap, max_norm<T, n>(as_vector<T, n>(d_minus<T, n>(d, v, h)) - del.q[k]));
-        gap = max(gap, max_norm<T, n>(as_vector<T, n>(d_plus<T, n>(d, v, h)) - del.q[k + 1]));
-        scale = max(scale, max_norm<T, n>(del.q[k]));
+        gap = nan_max(gap, max_norm<T, n>(as_vector<T, n>(d_minus<T, n>(d, v, h)) - del.q[k]));
+        gap = nan_max(gap, max_norm<T, n>(as_vector<T, n>(d_plus<T, n>(d, v, h)) - del.q[k + 1]));
+        scale = nan_max(scale, max_norm<T, n>(del.q[k]));
       }
       // Both evolutions round at each of their Newton solves (64 ulps each).
       check.add(h, gap, T(1024 * T(compared_steps) * epsilon<T>() * scale), {{"steps_compared", compared_steps}});
@@ -197,8 +197,8 @@ struct ExistenceUniquenessClaim : Claim<ExistenceUniquenessClaim> {
     using std::max, std::min;
     const State<T, n>& v = context.initial;
     UniquenessProbe<T> probe;
-    const T size = max(T(1), max(max_norm<T, n>(v.q), max_norm<T, n>(v.w)));
-    probe.tolerance = 1024 * epsilon<T>() * size / min(T(1), h);
+    const T size = nan_max(T(1), nan_max(max_norm<T, n>(v.q), max_norm<T, n>(v.w)));
+    probe.tolerance = 1024 * epsilon<T>() * size / nan_min(T(1), h);
     const T radius = (1 + max_norm<T, n>(v.w)) / 4;
     NewtonOptions options;
     options.max_iterations = 30;
@@ -211,7 +211,7 @@ struct ExistenceUniquenessClaim : Claim<ExistenceUniquenessClaim> {
           auto step = tq_step_from(context.system, *context.tq, *context.tq, v, h, start, options);
           if (!step.report.converged) continue;
           ++probe.converged;
-          probe.largest_distance = max(probe.largest_distance, state_distance(step.next, next));
+          probe.largest_distance = nan_max(probe.largest_distance, state_distance(step.next, next));
         } catch (const std::domain_error&) {  // a start outside the Lagrangian's domain
         } catch (const SingularLagrangianError&) {
         }

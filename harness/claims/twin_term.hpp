@@ -35,9 +35,9 @@ std::pair<T, T> legendre_shift_error(const Transform& with, const Transform& pla
   T error = 0, scale = 1;
   for (std::size_t j = 0; j < twin.a.size(); ++j) {
     T expected_shift = twin.a[j] * pow(h, twin.power);
-    error = max(error, abs(with[j] - plain[j] - expected_shift));
-    error = max(error, abs(with_other[j] - plain_other[j] - expected_shift));
-    scale = max(scale, abs(plain[j]) + abs(expected_shift));
+    error = nan_max(error, abs(with[j] - plain[j] - expected_shift));
+    error = nan_max(error, abs(with_other[j] - plain_other[j] - expected_shift));
+    scale = nan_max(scale, abs(plain[j]) + abs(expected_shift));
   }
   return {error, scale};
 }
@@ -99,8 +99,8 @@ struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
       int N = context.spec.steps[i];
       T gap = 0, scale = 1;
       for (int k = 0; k <= N; ++k) {
-        gap = max(gap, max_norm<T, n>(with.trajectories[i]->q[k] - without.trajectories[i]->q[k]));
-        scale = max(scale, max_norm<T, n>(with.trajectories[i]->q[k]));
+        gap = nan_max(gap, max_norm<T, n>(with.trajectories[i]->q[k] - without.trajectories[i]->q[k]));
+        scale = nan_max(scale, max_norm<T, n>(with.trajectories[i]->q[k]));
       }
       // The Legendre shift at the run's last segment: exact up to a few roundings.
       const auto& q = without.trajectories[i]->q;
@@ -139,8 +139,8 @@ struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
       const auto b = tq_trajectory(context.system, plain, context.initial, h, N);
       T gap = 0, scale = 1;
       for (int k = 0; k <= N; ++k) {
-        gap = max(gap, state_distance((*a)[k], b[k]));
-        scale = max(scale, max(max_norm<T, n>((*a)[k].q), max_norm<T, n>((*a)[k].w)));
+        gap = nan_max(gap, state_distance((*a)[k], b[k]));
+        scale = nan_max(scale, nan_max(max_norm<T, n>((*a)[k].q), max_norm<T, n>((*a)[k].w)));
       }
       auto v = tangent_point(b[N]);
       auto shifted = tq_legendre(context.system, with, v, h);

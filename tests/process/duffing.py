@@ -3,7 +3,7 @@
 test's own), in Python's decimal at the digits vivv asks for: a map program for the process
 protocol's checks in every scalar (tests/CMakeLists.txt, process/duffing-*).
 
-usage: duffing.py [--perturb EPS] [--padded] [--jacobian [--wrong-jacobian-after K]]
+usage: duffing.py [--perturb EPS] [--padded] [--jacobian [--wrong-jacobian-after K] [--huge-jacobian-at K]]
 
 --perturb EPS scales each step's new momentum by 1 + EPS·h²: a map that is not symplectic by
 EPS·h² per step (symplecticity must fail; in double too). --padded computes in double and writes the digits of
@@ -20,6 +20,9 @@ padded = "--padded" in sys.argv
 # --wrong-jacobian-after K: from the K-th Jacobian on, dp'/dx is 1 % too large (a planted bug).
 own_jacobian = "--jacobian" in sys.argv
 wrong_after = int(sys.argv[sys.argv.index("--wrong-jacobian-after") + 1]) if "--wrong-jacobian-after" in sys.argv else None
+# --huge-jacobian-at K: the K-th Jacobian (one vivv does not compare with differences) has every
+# entry 1e160, so that J^T Omega J overflows a double to NaN (a planted bug: no NaN may pass).
+huge_at = int(sys.argv[sys.argv.index("--huge-jacobian-at") + 1]) if "--huge-jacobian-at" in sys.argv else None
 jacobians = 0
 
 
@@ -56,5 +59,8 @@ for line in sys.stdin:
         jacobians += 1
         if wrong_after is not None and jacobians > wrong_after:
             dp_dx = dp_dx * (decimal.Decimal("1.01") if not padded else 1.01)
-        answer["jacobian"] = [[f"{v:.{digits - 1}e}" for v in row] for row in ((dx_dx, dx_dp), (dp_dx, dp_dp))]
+        rows = ((dx_dx, dx_dp), (dp_dx, dp_dp))
+        if huge_at is not None and jacobians == huge_at:
+            rows = ((1e160, 1e160), (1e160, 1e160))
+        answer["jacobian"] = [[f"{v:.{digits - 1}e}" for v in row] for row in rows]
     send(answer)
