@@ -139,8 +139,8 @@ struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {
             (kept.holds ? std::string("the floor did not fall")
                         : "from h = " + kept.from_h + " down the defect follows order " +
                               format_scalar(kept.leak_order, 3) + " instead of " + std::to_string(r)) +
-            ", a term ·h^" + std::to_string(k) + " of about " + format_scalar(leak_bits(kept, fine), 3) +
-            " bits, which is no narrower format's rounding (float 24, double 53, long double 64, float128 113 "
+            ", a term of size " + power_of_ten(-leak_bits(kept, fine) * std::log10(2.0)) + "·h^" + std::to_string(k) +
+            " (about " + format_scalar(leak_bits(kept, fine), 3) + " bits), which is no narrower format's rounding (float 24, double 53, long double 64, float128 113 "
             "bits, within 8): a lower-order term of " + method_words(context) + " itself, which local-order judges";
       } else {
         // The leak's size: δ = ρ/h^k at the smallest judged h, k the order the defect fell to

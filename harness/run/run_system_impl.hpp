@@ -10,6 +10,7 @@
 #include "harness/claims/registry.hpp"
 #include "harness/run/derivative_check.hpp"
 #include "harness/run/run_system.hpp"
+#include "harness/verdicts/deferred_findings.hpp"
 
 namespace vivv {
 
@@ -158,6 +159,7 @@ void run_on_system(const System& system, CaseSpec& spec, CaseResult& result, boo
     if (progress) progress(spec.name + ": refine to N = " + std::to_string(next) + " (" + *unsettled + ")");
     spec.steps.push_back(static_cast<int>(next));
   }
+  settle_deferred_findings(result.claims);
   apply_reference_check(result.claims, result.reference_check);
   apply_derivative_check(result.claims, result.derivative_check);
   for (auto& claim : result.claims)

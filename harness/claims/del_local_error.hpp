@@ -1,0 +1,72 @@
+// One DEL step from exact data, the Q×Q counterpart of local-order that global-order includes
+// (docs/claims.md, global-order). From q(t), q(t + h) of the reference orbit the DEL
+//   p_begin[L_d](q(t + h), q_2) = p_end[L~_d](q(t), q(t + h))
+// gives q_2, compared with q(t + 2h). For an order-r discrete Lagrangian the DEL's residual at
+// exact data is O(h^(r+1)) — the errors of its two discrete Legendre transforms, each O(h^r),
+// share their leading coefficient, which cancels (paper §2.3) — and ∂p_begin/∂q_e ~ M/h turns it
+// into |q_2 − q(t + 2h)| = O(h^(r+2)): the two-step recurrence's local error, which the N ~ 1/h
+// steps of a run turn into the global O(h^r). Unlike the DEL's map on (q, p), it does not see a
+// term the DEL cancels (weights 0.45/0.55 on L = ½w² − V add a difference f(q_b) − f(q_e) that
+// telescopes: the momenta are off at O(h), the trajectory is not).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harness/claims/claim.hpp"
+
+namespace vivv {
+
+// The local error of one DEL step at states x(j·T/states) of the reference orbit, j = 0 …
+// states − 1, as one series per state over the case's steps and halvings below its finest until
+// the error reaches the floor (at most `extra_halvings`), judged against order >= `order`.
+template <LagrangianSystem System>
+std::vector<Series> del_local_error_series(const CaseContext<System>& context, int order, int states = 4,
+                                           int extra_halvings = 80) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  using std::isfinite;
+  std::vector<T> steps = context.steps();
+  for (int k = 0; k < extra_halvings; ++k) steps.push_back(steps.back() / 2);
+  std::vector<Series> all;
+  for (int j = 0; j < states; ++j) {
+    const T t = context.final_time * T(j) / T(states);
+    const State<T, n> x = j == 0 ? context.initial : context.reference.advance(context.initial, t);
+    T scale = max_norm<T, n>(x.q);
+    std::vector<T> error, used_h;
+    const auto floor_at = [&](const T& h) {
+      Floor<T> floor;  // local-order's: the rounding of a step that divides by h, and the reference's
+      floor.rounding = T(1000) * epsilon<T>() * scale / h;
+      floor.reference = T(1000) * context.reference.tolerance() * scale;
+      floor.scale = static_cast<long double>(scale);
+      floor.n_max = static_cast<long double>(T(1) / h);
+      return floor;
+    };
+    for (const T& h : steps) {
+      context.report("global-order: one DEL step from x(" + format_scalar(t, 4) + ") at h = " + to_decimal<T>(h, 6));
+      const Vector<T, n> q1 = context.reference.advance(x, h).q, q2 = context.reference.advance(x, T(2 * h)).q;
+      const auto [q_next, report] = del_step(context.system, context.scheme, x.q, q1, h);
+      // A step too large for Newton from this state (h = 2 on an elastic pendulum) starts the
+      // series at a smaller h; one that fails below a converged one ends it.
+      if (!report.converged) {
+        if (error.empty()) continue;
+        break;
+      }
+      const T e = max_norm<T, n>(Vector<T, n>(q_next - q2));
+      if (!isfinite(e)) throw std::domain_error("one DEL step at h = " + format_scalar(h, 6) + " is not finite");
+      scale = nan_max(scale, max_norm<T, n>(Vector<T, n>(q2 - x.q)));
+      error.push_back(e);
+      used_h.push_back(h);
+      if (used_h.size() > context.steps().size() && e <= floor_at(h).value()) break;
+    }
+    if (error.empty())
+      throw std::domain_error("no DEL step from x(" + format_scalar(t, 4) + ") converged at any h of the grid");
+    all.push_back(make_series("|q_2 − q(t + 2h)| of one DEL step from x(" + format_scalar(t, 4) + ")", used_h, error,
+                              floor_at(used_h.back()), std::optional<double>(order), false, context.order_tolerance,
+                              context.fit_options));
+  }
+  return all;
+}
+
+}  // namespace vivv
