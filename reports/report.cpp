@@ -472,7 +472,12 @@ static void write_claims_table(std::ostream& out, const nlohmann::json& report, 
       const std::string verdict = claim.value("verdict", "");
       if (verdict == "pass" || verdict == "xfail") continue;
       out << c.value("name", std::string()) << " / " << claim.value("id", std::string()) << ": "
-          << verdict << ": " << claim.value("explanation", std::string()) << "\n";
+          << verdict << ": " << claim.value("explanation", std::string());
+      // An error voids what the claim could have caught: it says so, not nothing.
+      if (verdict == "error")
+        out << "; detection limit: "
+            << claim.value("detection_limit", std::string("none: the measurement cannot be trusted"));
+      out << "\n";
     }
   // What each pass could have caught: a pass is only as strong as its detection limit.
   if (passes_left_out > 0)

@@ -68,6 +68,7 @@ struct Claim {
       claim.verdict = "error";
       claim.explanation = unmeasurable.what();
       claim.evidence["unmeasurable_jacobian"] = unmeasurable.what();
+      claim.detection_limit = "none: the map's Jacobian could not be measured";
     }
     return claim;
   }

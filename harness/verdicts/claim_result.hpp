@@ -19,6 +19,8 @@ inline void apply_reference_check(std::vector<ClaimResult>& claims, const Refere
   for (auto& claim : claims) {
     claim.evidence["verdict_before_reference_check"] = claim.verdict;
     claim.verdict = "error";
+    claim.detection_limit = "none: nothing measured against a reference that misses its own tolerance can be "
+                            "told from that reference's error";
     claim.explanation = "the reference flow misses its own tolerance: its cross-check estimates the error at T as " +
                         reference.error_estimate + ", above the " + reference.allowed + " that its promised tolerance " +
                         reference.tolerance + " (with the check's own) allows; no verdict measured against it "
@@ -33,6 +35,7 @@ inline void apply_derivative_check(std::vector<ClaimResult>& claims, const Deriv
   for (auto& claim : claims) {
     claim.evidence["verdict_before_derivative_check"] = claim.verdict;
     claim.verdict = "error";
+    claim.detection_limit = "none: what was measured solved other equations than L's";
     claim.explanation =
         "vivv's derivatives of L disagree with differences of its values: " + check.explanation +
         "; the reference flow or the DEL solved other equations than L's, and no verdict "
