@@ -120,7 +120,8 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
       check.scaling_failure = truncation_scaling(context.steps(), check.values, units, resolved);
       check.scaling_limit = "a drift above " + std::to_string(resolved) +
                             " rounding unit at two h that falls like a power of h";
-      if (!check.holds && check.scaling_failure.empty()) check.undecided = rounding_growth(check.values, units);
+      if (!check.holds && check.scaling_failure.empty())
+        check.undecided = rounding_growth(check.values, units, context.floors().precision_fixed);
       const std::string breaks = context.map ? (context.spec.discretization.kind == "process"
                                                     ? "the program's map (" + context.map->name() + ")"
                                                     : "the map " + context.map->name()) +
@@ -151,7 +152,8 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
   // largest's: it grows with N, as rounding does) and stays within `rounding_band` units cannot
   // be told from rounding the unit underestimates: what would decide, or empty when it is not so.
   template <class T>
-  static PerStepCheck<T>::Undecided rounding_growth(const std::vector<T>& drift, const std::vector<T>& unit) {
+  static PerStepCheck<T>::Undecided rounding_growth(const std::vector<T>& drift, const std::vector<T>& unit,
+                                                    bool precision_fixed = false) {
     using std::log10;
     T worst = 0;
     for (std::size_t i = 0; i < drift.size(); ++i)
@@ -159,13 +161,19 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
     if (drift.size() < 2 || !(drift.back() >= drift.front()) || !(worst <= T(rounding_band))) return {};
     const T digits_now = -log10(epsilon<T>());
     const int digits = static_cast<int>(std::ceil(static_cast<double>(digits_now + log10(T(worst / ulps))) + 3));
-    const std::string advice = digits_advice(std::max(20, digits));
+    // A double program's precision is its own: what the case accepts is larger steps, where a broken
+    // symmetry's drift (a power of h) grows and rounding (which grows with N) shrinks.
+    const std::string advice = precision_fixed ? std::string("larger steps (smaller step counts), where a broken "
+                                                             "symmetry's drift grows with h and rounding falls with N")
+                                               : digits_advice(std::max(20, digits));
     return {"the drift is at most " + format_scalar(worst, 3) + " rounding units (allowed " + std::to_string(ulps) +
                 ") and does not fall with h (" + format_scalar(drift.front(), 3) + " at the largest h, " +
                 format_scalar(drift.back(), 3) +
                 " at the smallest): rounding grows with N like this, a broken symmetry falls like a power of h; "
                 "the unit may underestimate rounding where the terms cancel",
-            advice + ", where rounding sits 1000 times below this drift; a drift that does not shrink there fails"};
+            precision_fixed ? advice
+                            : advice + ", where rounding sits 1000 times below this drift; a drift that does not "
+                                       "shrink there fails"};
   }
 
   // A generator that is not finite or vanishes at the initial state makes J meaningless (a NaN

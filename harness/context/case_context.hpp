@@ -414,7 +414,8 @@ struct CaseContext {
     const T scale = max(T(1), max(max_norm<T, n>(initial.q), max_norm<T, n>(initial.w)));
     const T steps = T(spec.steps.back());
     return {1000 * steps * epsilon<T>() * scale, 1000 * reference.tolerance() * scale,
-            static_cast<long double>(scale), static_cast<long double>(spec.steps.back())};
+            static_cast<long double>(scale), static_cast<long double>(spec.steps.back()),
+            spec.discretization.process_precision == "double"};
   }
   T floor() const { return floors().value(); }
 

@@ -71,12 +71,30 @@ struct OrderVerdict {
 // rounding over N_max steps (1000·N_max·ε·scale); below `reference` it may be the reference's own
 // error (1000·tolerance·scale). The floor is the larger; an error "vanishes to working precision"
 // only at the rounding level rounding/1000, and only when the reference is not the limit.
+// The MPFR digits that would resolve an error above the floor, as advice.
+inline std::string digits_advice(int digits) {
+  const std::string d = std::to_string(digits);
+  return "scalar \"mpfr\" with \"digits\": " + d + " (or --scalar mpfr --digits " + d + ")" +
+         (digits >= 1000 ? ", the most vivv takes, which may not be enough" : "");
+}
+
 template <class T>
 struct Floor {
   T rounding = 0;
   T reference = 0;
   long double scale = 1;  // the state's size and any scaling of the series (e.g. 1/h^(r+1))
   long double n_max = 1;  // the sweep's largest step count
+  // The precision is the program's own (a map program that computes in double, "precision":
+  // "double"): more digits are not an option the case accepts, larger steps are.
+  bool precision_fixed = false;
+
+  // What would bring `error` above this floor, in what the case accepts: more digits or larger
+  // steps, or larger steps alone where the precision is fixed.
+  std::string advice_for(const T& error) const {
+    if (precision_fixed)
+      return "larger steps (the program computes in double: more digits cannot lower this floor)";
+    return digits_advice(digits_for(error)) + ", or larger steps";
+  }
 
   T value() const { return rounding > reference ? rounding : reference; }
   bool reference_limited() const { return reference > rounding; }
@@ -84,7 +102,7 @@ struct Floor {
   // The same floor for a series scaled by 1/divisor.
   Floor scaled_down(const T& divisor) const {
     return {rounding / divisor, reference / divisor, scale / static_cast<long double>(divisor),
-            n_max};
+            n_max, precision_fixed};
   }
   // MPFR decimal digits that put this floor a thousand times below `error`: with D digits the
   // reference is promised to 10^(10 − D) (ten guard digits) and N steps round to about

@@ -14,13 +14,6 @@
 
 namespace vivv {
 
-// The MPFR digits that would resolve `error` above `floor`, as advice.
-inline std::string digits_advice(int digits) {
-  const std::string d = std::to_string(digits);
-  return "scalar \"mpfr\" with \"digits\": " + d + " (or --scalar mpfr --digits " + d + ")" +
-         (digits >= 1000 ? ", the most vivv takes, which may not be enough" : "");
-}
-
 // A series of errors against h, fitted, and judged against `predicted`
 // (a lower bound unless `exact`) with `tolerance` on the order.
 //
@@ -75,8 +68,7 @@ Series make_series(const std::string& label, const std::vector<T>& h, const std:
     if (series.inconclusive && hidden > 0) {
       const std::string more = "; or bring back the " + std::to_string(hidden) + " point" +
                                (hidden > 1 ? "s" : "") + " the floor " + format_scalar(floor) +
-                               " hides: " + digits_advice(floors.digits_for(smallest)) +
-                               ", or larger steps";
+                               " hides: " + floors.advice_for(smallest);
       series.to_decide += more;
       series.explanation += more;
     }
@@ -121,15 +113,18 @@ Series make_series(const std::string& label, const std::vector<T>& h, const std:
                          format_scalar(floors.rounding) +
                          "): the errors below it cannot be told from the "
                          "reference's own error";
-    series.to_decide = "a reference accurate enough for the smallest error " +
-                       format_scalar(smallest) + ": " + digits_advice(floors.digits_for(smallest)) +
-                       ", or larger steps";
+    series.to_decide = floors.precision_fixed
+                           ? floors.advice_for(smallest)
+                           : "a reference accurate enough for the smallest error " + format_scalar(smallest) +
+                                 ": " + floors.advice_for(smallest);
   } else {
     series.explanation = counted + " and the others between the floor and the rounding level " +
                          format_scalar(floors.rounding_level()) + " (largest " +
                          format_scalar(largest_at_floor) + "): no order can be measured from them";
-    series.to_decide = "more precision for the smallest error " + format_scalar(smallest) + ": " +
-                       digits_advice(floors.digits_for(smallest)) + ", or larger steps";
+    series.to_decide = floors.precision_fixed
+                           ? floors.advice_for(smallest)
+                           : "more precision for the smallest error " + format_scalar(smallest) + ": " +
+                                 floors.advice_for(smallest);
   }
   series.explanation += "; to decide: " + series.to_decide;
   return series;

@@ -494,6 +494,17 @@ TEST(SeriesOfErrors, ErrorsBelowAFloorAreInconclusiveUnlessTheyVanishToRounding)
       make_series<double>("e", h, std::vector<double>(3, 0.0), reference_floor, 2.0, false, 0.2);
   EXPECT_TRUE(zeros.inconclusive);
   EXPECT_NE(zeros.to_decide.find("\"digits\": 1000"), std::string::npos) << zeros.to_decide;
+
+  // A program that computes in double ("precision": "double") is refused any other scalar or
+  // digits: what would decide names only what its case accepts, larger steps.
+  for (Floor<double> fixed : {reference_floor, rounding_floor}) {
+    fixed.precision_fixed = true;
+    const Series in_double = make_series<double>("e", h, between, fixed, 2.0, false, 0.2);
+    EXPECT_TRUE(in_double.inconclusive) << in_double.explanation;
+    EXPECT_EQ(in_double.to_decide.find("\"digits\""), std::string::npos) << in_double.to_decide;
+    EXPECT_EQ(in_double.to_decide.find("mpfr"), std::string::npos) << in_double.to_decide;
+    EXPECT_NE(in_double.to_decide.find("larger steps"), std::string::npos) << in_double.to_decide;
+  }
 }
 
 // conclude(): a failing series makes the claim fail and decides it, even beside an
