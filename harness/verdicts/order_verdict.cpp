@@ -87,6 +87,9 @@ std::vector<double> orders_above_floor(const OrderFit& fit) {
 struct Recession {
   std::vector<double> orders;
   double change = kNaN;  // c − b
+  // Toward p on a course whose distance to p shrinks faster than its changes: an approach, or a
+  // lower-order term about to cross p — the explanation names both.
+  bool approach_or_crossing = false;
 };
 
 std::optional<Recession> receding_from(const OrderFit& fit, double predicted, bool exact,
@@ -127,16 +130,17 @@ std::optional<Recession> receding_from(const OrderFit& fit, double predicted, bo
   if (!(std::fabs(before) > receding_noise)) return std::nullopt;
   const double ratio = change / before;
   if (ratio >= 1) return recession;  // not contracting: no limit in sight
-  // An approach: the distance to p shrinks at least as fast as the changes do, so that the orders
-  // reach p on the course they show (C h^p (1 + d h + d' h²) approaches p with contracting
-  // distances while its changes may still contract slowly). Heun's RK2 showed 2.65, 2.35, 2.14
-  // (distances 0.35 → 0.14, a ratio 0.40 below the changes' 0.70, whose Aitken limit 1.65 lies
-  // beyond the tolerance) and 2.06 refined. A lower-order term below an h^(p+1) one falls through
-  // p with growing changes instead (h³ + 10⁻⁴·h on h = 1/8 … 1/64: 2.97, 2.90, 2.65): not contracting.
-  const double distance_ratio = (c - predicted) / (b - predicted);
-  if (distance_ratio >= 0 && distance_ratio <= ratio) return std::nullopt;
   const double limit = c + change * ratio / (1 - ratio);
   const bool beyond = change < 0 ? limit < predicted - tolerance : limit > predicted + tolerance;
+  // Falling toward p with the distance to it shrinking at least as fast as the changes: an
+  // approach (Heun's RK2: 2.65, 2.35, 2.14, distances 0.35 → 0.14 at 0.40 while the changes
+  // contract by 0.70 toward an Aitken limit of 1.65; 2.06 refined) — or a lower-order term about
+  // to cross p, which shows the same shape (h²(1 + 20h) + 3·10⁻⁴·h on h = 1/8 … 1/256: 2.46,
+  // 2.30, 2.16, 2.05, distances at 0.31, the h term 6.6 % of the error at the finest h, then
+  // 1.9 …). Three orders cannot tell them apart and a pass would hide the second: inconclusive,
+  // in words that name both.
+  const double distance_ratio = (c - predicted) / (b - predicted);
+  recession.approach_or_crossing = distance_ratio >= 0 && distance_ratio <= ratio;
   if (beyond) return recession;
   return std::nullopt;
 }
@@ -371,6 +375,19 @@ OrderVerdict judge_order_rules(const OrderFit& fit, double predicted, bool exact
               "announce, until the order beyond it shows: at least " + halvings
             : "the sweep extended to smaller h (--refine) until its pairwise orders settle or cross " +
                   bound + ": going on as they go, they would cross it in about " + halvings;
+    if (recession->approach_or_crossing) {
+      verdict.explanation =
+          observed + " " + relation + bound + ", and so " +
+          (fit.finest_orders.size() > 1 ? "are the " : "is the ") + finest + ", but the pairwise orders " +
+          listed_orders(recession->orders) + " (largest h first) still fall toward " + format_number(predicted, 4) +
+          ", their distance to it shrinking faster than their changes, by " +
+          format_number(std::fabs(recession->change), 2) +
+          " at the finest step: an approach from above, or a lower-order term about to cross " +
+          format_number(predicted, 4) +
+          " — the orders so far cannot tell them apart, and a pass would hide the second; to decide: " +
+          verdict.to_decide;
+      return verdict;
+    }
     verdict.explanation =
         observed + " " + relation + bound + ", and so " +
         (fit.finest_orders.size() > 1 ? "are the " : "is the ") + finest + ", but the pairwise orders " +
