@@ -253,7 +253,8 @@ struct GlobalOrderClaim : Claim<GlobalOrderClaim> {
 
  private:
   // One step (docs/claims.md, global-order): a lower-order term too small for the global sweep
-  // to resolve shows at once in one step of the same evolution, halving h to the floor. For a
+  // to resolve shows at once in one step of the same evolution, at the case's steps and up to
+  // one_step_halvings below its finest (to the floor). For a
   // one-step map, global-order iterates that map from (q0, p0), and its step is local-order's
   // measurement (order r + 1); for a DEL, one step of the two-step recurrence from exact q(t),
   // q(t + h) (order r + 2, harness/claims/del_local_error.hpp) — not the DEL's map on (q, p),
@@ -263,6 +264,7 @@ struct GlobalOrderClaim : Claim<GlobalOrderClaim> {
   // over it: the failing series joins the claim's and decides it. A step that passes or cannot
   // decide leaves the verdict to the global sweep (evidence.one_step). TQ discretizations have
   // the claim "order" for this.
+  //
   // How far below the sweep's finest step one step looks: 2^-10, where a term one order lower
   // than the method's, whose share of the error at the finest step is 10^-3 (below the global
   // sweep's resolution, a share of about 0.03), has grown to the method's own. A smaller term — a
