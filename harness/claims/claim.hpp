@@ -57,20 +57,22 @@ struct Claim {
       claim.evidence["divergence"] = {{"h", diverged.h}, {"message", diverged.what()}};
     } catch (const NonFiniteMeasurement& non_finite) {
       // A NaN or an infinity where a number was measured: no verdict either way.
-      claim = result();
-      claim.verdict = "error";
-      claim.explanation = non_finite.what();
-      claim.evidence["non_finite_measurement"] = non_finite.what();
-      claim.detection_limit = "none: the measurement was not a finite number";
+      errs(claim, "non_finite_measurement", non_finite, "none: the measurement was not a finite number");
     } catch (const UnmeasurableJacobian& unmeasurable) {
       // The measurement cannot be trusted: the claim errs, the case's other claims are judged.
-      claim = result();
-      claim.verdict = "error";
-      claim.explanation = unmeasurable.what();
-      claim.evidence["unmeasurable_jacobian"] = unmeasurable.what();
-      claim.detection_limit = "none: the map's Jacobian could not be measured";
+      errs(claim, "unmeasurable_jacobian", unmeasurable, "none: the map's Jacobian could not be measured");
     }
     return claim;
+  }
+
+  // The claim as `error` for a measurement that cannot be trusted: the cause as its explanation
+  // and under `key` in the evidence, and what it could have caught (nothing, and why).
+  static void errs(ClaimResult& claim, const char* key, const std::exception& cause, const char* limit) {
+    claim = result();
+    claim.verdict = "error";
+    claim.explanation = cause.what();
+    claim.evidence[key] = cause.what();
+    claim.detection_limit = limit;
   }
 
   // The prediction for the claim's main series: the theorem's order, or the
@@ -130,6 +132,21 @@ std::string truncation_scaling(const std::vector<T>& h, const std::vector<T>& va
   return "at " + std::to_string(resolved.size()) + " step sizes the defect is more than " +
          format_scalar(above) + " rounding units and falls with h at pairwise orders " + orders +
          ": a defect that falls like a power of h is truncation, not rounding";
+}
+
+// The size of the terms each momentum component p_i = ∂L/∂w_i is made of, max(|p_i|, |(M w)_i|,
+// |(∂L/∂w − M w)_i|): what its rounding scales with, however small p_i is (a vector potential's
+// p_x = v_x − B·y of terms near 0.8). NaN where a term is.
+template <LagrangianSystem System>
+VectorOf<System> momentum_term_sizes(const System& system, const VectorOf<System>& q, const VectorOf<System>& w) {
+  using T = typename System::Scalar;
+  using std::abs;
+  const auto d = lagrangian_derivatives(system, q, w);
+  const VectorOf<System> kinetic = d.d2L_dw2 * w;
+  VectorOf<System> size = kinetic;
+  for (int i = 0; i < size.size(); ++i)
+    size[i] = nan_max(T(abs(d.dL_dw[i])), nan_max(T(abs(kinetic[i])), T(abs(T(d.dL_dw[i] - kinetic[i])))));
+  return size;
 }
 
 // An identity checked at each h against its own tolerance: the measured values

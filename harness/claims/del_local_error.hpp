@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "harness/claims/claim.hpp"
+#include "harness/claims/map_local_order.hpp"
 
 namespace vivv {
 
@@ -35,14 +36,8 @@ std::vector<Series> del_local_error_series(const CaseContext<System>& context, i
     const State<T, n> x = j == 0 ? context.initial : context.reference.advance(context.initial, t);
     T scale = max_norm<T, n>(x.q);
     std::vector<T> error, used_h;
-    const auto floor_at = [&](const T& h) {
-      Floor<T> floor;  // local-order's: the rounding of a step that divides by h, and the reference's
-      floor.rounding = T(1000) * epsilon<T>() * scale / h;
-      floor.reference = T(1000) * context.reference.tolerance() * scale;
-      floor.scale = static_cast<long double>(scale);
-      floor.n_max = static_cast<long double>(T(1) / h);
-      return floor;
-    };
+    // local-order's floor: the rounding of a step that divides by h, and the reference's.
+    const auto floor_at = [&](const T& h) { return MapLocalOrderClaim::floor_at(context, scale, h); };
     for (const T& h : steps) {
       context.report("global-order: one DEL step from x(" + format_scalar(t, 4) + ") at h = " + to_decimal<T>(h, 6));
       const Vector<T, n> q1 = context.reference.advance(x, h).q, q2 = context.reference.advance(x, T(2 * h)).q;

@@ -141,11 +141,7 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
                                                 const VectorOf<System>& q,
                                                 const VectorOf<System>& w) {
     using T = typename System::Scalar;
-    constexpr int n = System::dimension;
-    using std::max;
-    const auto d = lagrangian_derivatives(context.system, q, w);
-    const Vector<T, n> kinetic = d.d2L_dw2 * w;
-    return nan_max(max_norm<T, n>(d.dL_dw), nan_max(max_norm<T, n>(kinetic), max_norm<T, n>(Vector<T, n>(d.dL_dw - kinetic))));
+    return max_norm<T, System::dimension>(momentum_term_sizes(context.system, q, w));
   }
 
   // A drift beyond `ulps` units that does not fall with h (the finest step's is at least the

@@ -149,6 +149,7 @@ struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
     return {q1, p_end(context.system, context.scheme.past, x.q, q1, h)};
   }
 
+ public:
   // The floor of one step at h from a state of size `scale`: rounding of the step, which divides
   // differences of points by h in a DEL (ε·scale/h), a thousand times over; and the reference's
   // promised accuracy, a thousand times over.

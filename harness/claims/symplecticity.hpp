@@ -190,10 +190,7 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
       size << q.cwiseAbs(), (p ? *p : momentum(context.system, q, w)).cwiseAbs();
       return size;
     }
-    const auto d = lagrangian_derivatives(context.system, q, w);
-    const Vector<T, n> kinetic = d.d2L_dw2 * w;
-    size << q.cwiseAbs(),
-        d.dL_dw.cwiseAbs().cwiseMax(kinetic.cwiseAbs()).cwiseMax(Vector<T, n>(d.dL_dw - kinetic).cwiseAbs());
+    size << q.cwiseAbs(), momentum_term_sizes(context.system, q, w);
     return size;
   }
   // A Jacobian that is not the derivative of the step it is judged for makes the verdict

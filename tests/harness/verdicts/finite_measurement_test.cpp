@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <limits>
-#include <optional>
 
 #include "core/structure/symplectic.hpp"
 #include "harness/claims/claim.hpp"
@@ -16,13 +15,7 @@ namespace vivv {
 namespace {
 
 template <class T>
-class FiniteMeasurementTest : public ::testing::Test {
- protected:
-  FiniteMeasurementTest() {
-    if constexpr (is_mpfr_v<T>) guard_.emplace(60);
-  }
-  std::optional<PrecisionGuard> guard_;
-};
+class FiniteMeasurementTest : public testing::ScalarTest<T> {};
 using FiniteScalars = ::testing::Types<double, long double, quad, mpfr_real>;
 TYPED_TEST_SUITE(FiniteMeasurementTest, FiniteScalars, testing::ScalarNames);
 
