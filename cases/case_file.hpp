@@ -132,6 +132,10 @@ struct CaseSpec {
 // Reads and validates a case file; throws CaseError (also for a path that is
 // not a regular file, JSON nested deeper than maximum_json_depth and a key
 // that occurs twice in one object).
+// Why the claim modified-energy does not apply to the case's discretization (its H₂ is derived
+// for the midpoint and trapezoid rules without twin terms), or "" when it does.
+std::string modified_energy_inapplicable(const CaseSpec& spec);
+
 CaseSpec read_case_file(const std::string& path);
 
 // What `vivv run --scalar S --digits D` would make of `spec`: the checks read_case_file makes

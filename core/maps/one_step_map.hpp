@@ -57,6 +57,9 @@ struct OneStepMap {
   // the map's precision allows (a double program: about ε^(2/3)). symplecticity's tolerance is
   // a multiple of it.
   virtual T jacobian_unit() const { return epsilon<T>(); }
+  // The relative rounding of the last jacobian()'s entries: jacobian_unit(), or more where the map
+  // measured more (a double program whose answers carry an implicit solver's noise).
+  virtual T last_jacobian_unit() const { return jacobian_unit(); }
   // How jacobian() computes it, for the report.
   virtual std::string jacobian_method() const {
     return "forward-mode automatic differentiation of one step of " + name() +

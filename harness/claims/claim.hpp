@@ -24,6 +24,13 @@
 
 namespace vivv {
 
+// A claim that does not apply to the case (modified-energy on a rule its H₂ is not derived for):
+// that claim is refused — `error`, naming why — and the case's other claims are judged; a case
+// that lists no other claim is bad input (CaseError).
+struct ClaimNotApplicable : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 template <class Derived>
 struct Claim {
   // Whether a failure of the claim is an order its series' fit shows (so that a known failure
@@ -61,6 +68,10 @@ struct Claim {
     } catch (const UnmeasurableJacobian& unmeasurable) {
       // The measurement cannot be trusted: the claim errs, the case's other claims are judged.
       errs(claim, "unmeasurable_jacobian", unmeasurable, "none: the map's Jacobian could not be measured");
+    } catch (const ClaimNotApplicable& refused) {
+      if (context.spec.claims.size() == 1) throw CaseError(context.spec.file, "claims", refused.what());
+      errs(claim, "refused", refused, "none: the claim does not apply to this case");
+      claim.explanation = std::string("refused (the case's other claims are judged): ") + refused.what();
     }
     return claim;
   }

@@ -49,12 +49,12 @@ struct ModifiedEnergyClaim : Claim<ModifiedEnergyClaim> {
         {xT.q, x0.w},
         {x0.q, Vector<T, n>(-x0.w)},
         {Vector<T, n>((x0.q + xT.q) / 2), Vector<T, n>((x0.w + xT.w) / 2)}};
+    if (const std::string why = modified_energy_inapplicable(context.spec); !why.empty())
+      throw ClaimNotApplicable(why);
     if (const std::string defect = unit_mass_defect(context.system, samples); !defect.empty())
-      throw CaseError(context.spec.file, "claims",
-                      "modified-energy is derived for L = ½|w|² − U(q), and this Lagrangian is not "
-                      "of that form "
-                      "along the motion: " +
-                          defect);
+      throw ClaimNotApplicable(
+          "modified-energy is derived for L = ½|w|² − U(q), and this Lagrangian is not of that form "
+          "along the motion: " + defect);
     const ModifiedEnergyForm form = modified_energy_form(context.scheme.future.rule);
     std::vector<T> modified_error, energy_error;
     std::vector<EnergyDrift<T>> drifts;

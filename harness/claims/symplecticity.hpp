@@ -44,14 +44,15 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
       // A one-step map: its Jacobian by jets through its own code; no Hessian blocks to size.
       visit_map_trajectories(context, "symplecticity: Jacobians", [&](const T& h, const auto& x) {
         std::vector<Matrix<T, 2 * n, 2 * n>> jacobians;
+        std::vector<T> noise;  // each Jacobian's rounding in units of jacobian_unit(): 1, or measured
         Vector<T, 2 * n> scale = Vector<T, 2 * n>::Zero();  // each coordinate's size along the run
         for (std::size_t k = 0; k + 1 < x.size(); ++k) {
           jacobians.push_back(context.map->jacobian(x[k], h));
+          noise.push_back(context.map->last_jacobian_unit() / context.map->jacobian_unit());
           scale = scale.cwiseMax(phase_size<T, n>(context, x[k].q, x[k].w, k, x.size() - 1));
         }
         std::size_t worst = 0;
-        units.push_back(judge<T, n>(check, h, jacobians, std::vector<T>(jacobians.size(), T(1)),
-                                    context.map->jacobian_unit(), worst));
+        units.push_back(judge<T, n>(check, h, jacobians, noise, context.map->jacobian_unit(), worst));
         // The map on (q, p) itself: w from p by the inverse Legendre transform, one step, p' =
         // FL(q', w').
         const State<T, n>& at = x[worst];
@@ -135,8 +136,9 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
     check.scaling_limit = "a defect above " + std::to_string(resolved) +
                           " rounding units at two h that falls like a power of h";
     claim.evidence["rounding_unit_rule"] =
-        "u = ε·s·max(1, |J|)² per step (s the largest Hessian block, 1 for a one-step map; for a "
-        "map whose Jacobian comes from differences at a double's widths, ε is evidence.jacobian_unit); a step "
+        "u = ε·s·max(1, |J|)² per step (s the largest Hessian block; for a one-step map 1, or the noise "
+        "its answers show in units of evidence.jacobian_unit, which replaces ε for a map whose Jacobian comes "
+        "from differences at a double's widths: rows[].step_size_factor); a step "
         "fails above " +
         std::to_string(ulps) + " u, and defects above " + std::to_string(resolved) +
         " u at two or more h falling like a power of h fail as truncation";
@@ -259,7 +261,8 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
                {"largest_step_defect", to_decimal<T>(largest_defect)},
                {"composite_defect", to_decimal<T>(composite_defect)},
                {"composite_tolerance", to_decimal<T>(composite_tolerance)},
-               {"rounding_units", format_scalar(T(worst_defect / (worst_tolerance / ulps)), 3)}},
+               {"rounding_units", format_scalar(T(worst_defect / (worst_tolerance / ulps)), 3)},
+               {"step_size_factor", format_scalar(sizes[worst_step], 3)}},
               composite_defect <= composite_tolerance);
     return worst_tolerance / ulps;
   }

@@ -78,7 +78,9 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
       return "central differences of one step of " + name() +
              " (precision \"double\": the same instance, 17 digits) at widths δ = 10^-" +
              std::to_string(double_exponent()) +
-             "·max(1, |y_j|) and 2δ in each of (q, p), extrapolated: (4·J_δ − J_2δ)/3";
+             "·max(1, |y_j|) and 2δ in each of (q, p), extrapolated: (4·J_δ − J_2δ)/3; its rounding "
+             "from the noise r of the program's answers, measured by fourth differences at spacing 10^-" +
+             std::to_string(digits_ / 2) + " (at least 1.5·r/δ)";
     return "central differences of one step of " + name() + " in a second instance of it at " +
            std::to_string(fine_digits()) + " digits, step 10^-" +
            std::to_string(difference_exponent()) + "·max(1, |y_j|) in each of (q, p)";
@@ -95,6 +97,15 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
       return T(pow(T(10), double_exponent() + 2 - digits_));
     return epsilon<T>();
   }
+  // A double program's answers may carry more rounding than a few ulps: an implicit solver that
+  // stops at 1e-15 relative in q' and forms p' from (q' − q)/h passes its last digits on to p'
+  // times 1/h, so the noise grows as h falls (a spherical pendulum's midpoint DEL in Python floats
+  // measured 3.1e-11 … 2.2e-10 at h = 1/8 … 1/64 against a fixed 1.6e-10). The noise r is
+  // measured, not assumed: fourth differences of the answers at spacing s = 10^-⌊D/2⌋·max(1, |y_j|)
+  // along two directions, |Δ⁴| / √70 (the spread of Δ⁴ of independent rounding errors of spread r;
+  // its truncation, s⁴ times the map's fourth derivative, is 10^-32 of that derivative), the
+  // largest over the answers' entries. The Jacobian's unit is then at least 1.5·r·10^e / max(1, |J|).
+  T last_jacobian_unit() const override { return last_unit_; }
 
   State<T, n> step(const State<T, n>& x, const T& h) const override {
     const Vector<T, n> p = momentum_at(x);
@@ -126,9 +137,11 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     std::array<std::string, 2 * n> y;
     for (int i = 0; i < n; ++i) y[i] = to_decimal<T>(x.q[i]), y[n + i] = to_decimal<T>(p[i]);
     const std::string step = to_decimal<T>(h);
+    last_unit_ = jacobian_unit();
     if (process_->uses_extension(jacobian_extension)) return own_jacobian(y, h, step_index);
     Columns columns;  // ∂(q', p')/∂y_j, as decimals
     if (double_program_) {
+      using std::abs, std::pow;
       // One instance at 17 digits, Richardson's extrapolation of central differences at widths δ
       // and 2δ, (4·J_δ − J_2δ)/3: its truncation is O(δ⁴), so that δ = 10^-4 keeps it below the
       // rounding, about 1.5·r/δ (r the program's own rounding) — where one width would leave δ²·Φ‴ in the
@@ -137,9 +150,19 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
       const auto narrow = differences(*process_, digits_, step, y, double_exponent(), h);
       const auto wide = differences(*process_, digits_, step, y, double_exponent(), h, 2);
       Differences extrapolated;
+      R largest = 1;
       for (int j = 0; j < 2 * n; ++j)
-        for (int i = 0; i < 2 * n; ++i) extrapolated[j][i] = (4 * narrow[j][i] - wide[j][i]) / 3;
+        for (int i = 0; i < 2 * n; ++i)
+          extrapolated[j][i] = (4 * narrow[j][i] - wide[j][i]) / 3,
+          largest = std::max(largest, R(abs(extrapolated[j][i])));
       columns = decimals(extrapolated);
+      // The noise of the answers, measured at the first Jacobian of each h and every
+      // `recheck`-th; the largest so far at this h stands for the steps between.
+      if (step_index % recheck == 0) answer_noise_ = std::max(answer_noise_, answer_noise(step, y, h));
+      // Extrapolated differences carry about 1.5·r/δ of it, δ ≥ 10^-e: relative to |J|.
+      last_unit_ = std::max(jacobian_unit(),
+                            from_decimal<T>(to_decimal<R>(R(3 * answer_noise_ * pow(R(10), double_exponent()) /
+                                                            (2 * largest)))));
     } else {
       columns = fine_differences(y, step, h);
     }
@@ -310,8 +333,47 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   // another.
   long next_jacobian_step(const T& h) const {
     const std::string key = to_decimal<T>(h);
-    if (key != jacobian_h_) jacobian_h_ = key, jacobian_step_ = 0;
+    if (key != jacobian_h_) jacobian_h_ = key, jacobian_step_ = 0, answer_noise_ = 0;
     return jacobian_step_++;
+  }
+
+  // The spread r of a double program's answers' rounding near y (last_jacobian_unit): fourth
+  // differences at spacing s along the directions (1, 1, …) and (1, −1, …), each point's answer
+  // one request; |Δ⁴ f_i| / √70 for every entry i of (q', p'), the largest. In MPFR at the
+  // caller's PrecisionGuard.
+  R answer_noise(const std::string& step, const std::array<std::string, 2 * n>& y, const T& h) const {
+    using std::abs, std::max, std::pow, std::sqrt;
+    const auto image = [&](const std::array<R, 2 * n>& at) {
+      nlohmann::json request = {{"h", step}, {"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
+      for (int i = 0; i < 2 * n; ++i) request[i < n ? "q" : "p"].push_back(to_decimal<R>(at[i]));
+      const nlohmann::json answer = process_->request(request);
+      std::array<R, 2 * n> out;
+      for (int i = 0; i < n; ++i) {
+        out[i] = number<R>(*process_, answer, "q", i, digits_);
+        out[n + i] = number<R>(*process_, answer, "p", i, digits_);
+        require_within_scale(*process_, out[i], "q", i, h);
+        require_within_scale(*process_, out[n + i], "p", i, h);
+      }
+      return out;
+    };
+    std::array<R, 2 * n> centre;
+    for (int j = 0; j < 2 * n; ++j) centre[j] = from_decimal<R>(y[j]);
+    const std::array<R, 2 * n> f0 = image(centre);
+    const R spacing = pow(R(10), -(digits_ / 2));
+    R noise = 0;
+    for (int direction = 0; direction < 2; ++direction) {
+      std::array<std::array<R, 2 * n>, 4> f;  // at k = −2, −1, 1, 2
+      const int ks[4] = {-2, -1, 1, 2};
+      for (int m = 0; m < 4; ++m) {
+        std::array<R, 2 * n> at = centre;
+        for (int j = 0; j < 2 * n; ++j)
+          at[j] += ks[m] * spacing * max(R(1), R(abs(centre[j]))) * (direction == 1 && j % 2 ? -1 : 1);
+        f[m] = image(at);
+      }
+      for (int i = 0; i < 2 * n; ++i)
+        noise = max(noise, R(abs(R(f[0][i] - 4 * f[1][i] + 6 * f0[i] - 4 * f[2][i] + f[3][i])) / sqrt(R(70))));
+    }
+    return noise;
   }
 
   // UnmeasurableJacobian: the second instance's differences show that it does not compute with
@@ -436,6 +498,8 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   mutable long jacobians_ = 0;                // Jacobians by the second instance so far
   mutable std::string jacobian_h_;            // the h of the last Jacobian, and its index there
   mutable long jacobian_step_ = 0;
+  mutable R answer_noise_ = 0;     // a double program's answer noise at this h (answer_noise)
+  mutable T last_unit_ = 0;        // the last Jacobian's relative rounding (last_jacobian_unit)
   mutable std::optional<std::pair<State<T, n>, Vector<T, n>>> last_;  // the last answer: (q, w), p
   static constexpr long recheck = 8;
 };
