@@ -60,6 +60,12 @@ struct OneStepMap {
   // The relative rounding of the last jacobian()'s entries: jacobian_unit(), or more where the map
   // measured more (a double program whose answers carry an implicit solver's noise).
   virtual T last_jacobian_unit() const { return jacobian_unit(); }
+  // The spread of the rounding in one step's answer from x, where the map measures it (a program
+  // that computes in double): local-order's floor is then the map's own rounding.
+  virtual std::optional<T> answer_noise(const State<T, n>& x, const T& h) const {
+    (void)x, (void)h;
+    return std::nullopt;
+  }
   // How jacobian() computes it, for the report.
   virtual std::string jacobian_method() const {
     return "forward-mode automatic differentiation of one step of " + name() +

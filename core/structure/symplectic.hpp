@@ -66,7 +66,8 @@ T symplecticity_defect(const Matrix<T, m, m>& jacobian) {
 // trapezoid and Galerkin DELs and odeint's steppers on the pendulum, Duffing, Kepler and
 // Hénon–Heiles in double, long double, float128 and MPFR. A Jacobian of another step or of a
 // step of h/2, of the other side of a mismatched DEL, or with a block dropped misses by O(h) or
-// more.
+// more. ε is `unit`: T's unit roundoff, or a double's for a map that computes in double while
+// vivv computes in a wider T.
 template <class T>
 struct JacobianAgreement {
   T mismatch = 0;  // max |J − D_δ|
@@ -77,9 +78,10 @@ struct JacobianAgreement {
 template <class T, int m, class Map>
 JacobianAgreement<T> compare_with_differences(const Map& map, const Vector<T, m>& x,
                                               const Matrix<T, m, m>& jacobian,
-                                              const Vector<T, m>& scale) {
+                                              const Vector<T, m>& scale,
+                                              const T& unit = epsilon<T>()) {
   using std::abs, std::max, std::pow, std::sqrt;
-  const T root = pow(epsilon<T>(), T(1) / 3);
+  const T root = pow(unit, T(1) / 3);
   auto differences = [&](const T& fraction) {
     Matrix<T, m, m> d;
     for (int j = 0; j < m; ++j) {
@@ -99,7 +101,7 @@ JacobianAgreement<T> compare_with_differences(const Map& map, const Vector<T, m>
   out.mismatch = max_entry<T, m, m>(Matrix<T, m, m>(jacobian - coarse));
   const T change = nan_max(max_entry<T, m, m>(Matrix<T, m, m>(coarse - middle)),
                            max_entry<T, m, m>(Matrix<T, m, m>(middle - fine)));
-  out.allowed = 4 * change + sqrt(epsilon<T>()) * max_entry<T, m, m>(jacobian);
+  out.allowed = 4 * change + sqrt(unit) * max_entry<T, m, m>(jacobian);
   out.holds = out.mismatch <= out.allowed;
   return out;
 }

@@ -83,7 +83,7 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
               context.spec.file, "initial",
               "|p_k|·|xi(q_k)| is 0 at every step of the run with h = " + format_scalar(h, 6) +
                   ": the momentum map has no scale to judge a drift against");
-        const T unit = T(N) * epsilon<T>() * size;
+        const T unit = T(N) * context.working_epsilon() * size;
         units.push_back(unit);
         check.add(h, drift, T(ulps * unit),
                   {{"N", N},

@@ -173,7 +173,8 @@ nlohmann::json energy_error_against_t(const T& h, const std::vector<T>& energies
 
 template <class T, int n>
 EnergyDrift<T> measure_energy_drift(const T& h, const std::vector<T>& energies,
-                                    const std::vector<Vector<T, n>>& velocities, const T& size) {
+                                    const std::vector<Vector<T, n>>& velocities, const T& size,
+                                    const T& unit = epsilon<T>()) {
   using std::abs;
   using std::max;
   using std::min;
@@ -188,7 +189,7 @@ EnergyDrift<T> measure_energy_drift(const T& h, const std::vector<T>& energies,
     low = nan_min(low, e[k]), high = nan_max(high, e[k]);
   }
   drift.spread = high - low;
-  drift.rounding = T(static_cast<int>(N)) * ulps * epsilon<T>() * nan_max(size, T(abs(energies[0])));
+  drift.rounding = T(static_cast<int>(N)) * ulps * unit * nan_max(size, T(abs(energies[0])));
   if (largest <= drift.rounding) {
     drift.status = "floor";
     return drift;
@@ -405,7 +406,7 @@ Series energy_size_series(const CaseContext<System>& context,
   floor.rounding = T(1000) * rounding;
   floor.reference = 0;  // E_k − E_0 involves no reference
   floor.n_max = static_cast<long double>(context.spec.steps.back());
-  floor.scale = static_cast<long double>(rounding / (T(16) * epsilon<T>() * T(context.spec.steps.back())));
+  floor.scale = static_cast<long double>(rounding / (T(16) * context.working_epsilon() * T(context.spec.steps.back())));
   const int order = std::max(1, context.map_order() - (!context.map && !context.tq && context.scheme.mismatched ? 1 : 0));
   Series series = sweep_series(context, "max_k |E_k − E_0| over [0, T] (the energy error's size)",
                                largest_error, OrderPrediction{order, false}, floor);
@@ -442,7 +443,7 @@ struct EnergyBehaviourClaim : Claim<EnergyBehaviourClaim> {
       T largest = 0;
       for (const T& energy : energies) largest = nan_max(largest, T(abs(T(energy - energies.front()))));
       largest_error.push_back(largest);
-      runs.push_back(measure_energy_drift<T, n>(h, energies, velocities, size));
+      runs.push_back(measure_energy_drift<T, n>(h, energies, velocities, size, context.working_epsilon()));
     };
     if (context.map) {
       visit_map_trajectories(context, "energy-behaviour: energy", [&](const T& h, const auto& x) {

@@ -68,7 +68,7 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
         };
         Vector<T, 2 * n> y;
         y << at.q, momentum(context.system, at.q, at.w);
-        jacobian_checks.push_back(check_jacobian(h, worst, step, y, jacobians[worst], scale));
+        jacobian_checks.push_back(check_jacobian(h, worst, step, y, jacobians[worst], scale, context.working_epsilon()));
       });
       claim.evidence["jacobian"] = context.map->jacobian_method();
       claim.evidence["jacobian_unit"] = to_decimal<T>(context.map->jacobian_unit(), 6);
@@ -120,7 +120,7 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
         };
         Vector<T, 2 * n> y;
         y << q[worst], p_begin(context.system, context.scheme.future, q[worst], q_next, h);
-        jacobian_checks.push_back(check_jacobian(h, worst, step, y, jacobians[worst], scale));
+        jacobian_checks.push_back(check_jacobian(h, worst, step, y, jacobians[worst], scale, context.working_epsilon()));
       });
       claim.evidence["jacobian"] =
           "implicit function theorem: dq'/d(q, p) = B_e^-1 (-B_b, I), dp'/d(q, p) = (E_b, 0) + E_e dq'/d(q, p) "
@@ -157,8 +157,8 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
   template <class T, int m, class Map>
   static JacobianCheck check_jacobian(const T& h, std::size_t step, const Map& map,
                                       const Vector<T, m>& y, const Matrix<T, m, m>& jacobian,
-                                      const Vector<T, m>& scale) {
-    const JacobianAgreement<T> agreement = compare_with_differences<T, m>(map, y, jacobian, scale);
+                                      const Vector<T, m>& scale, const T& unit) {
+    const JacobianAgreement<T> agreement = compare_with_differences<T, m>(map, y, jacobian, scale, unit);
     const std::string at = "at h = " + format_scalar(h, 6) + ", step " + std::to_string(step) + " ";
     require_finite(agreement.mismatch, at + "the Jacobian's distance from central differences of its map");
     require_finite(agreement.allowed, at + "the allowance of the Jacobian's check against differences");
@@ -243,6 +243,13 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
                                 format_scalar(max_entry<T, 2 * n, 2 * n>(jacobians[k]), 3) + ")";
       require_finite(defect, where + " |JᵀΩJ − Ω|");
       require_finite(tolerance, where + " its tolerance");
+      // An allowance of |Ω| = 1 or more would pass JᵀΩJ = 0: the identity cannot be measured at
+      // that step in this precision (a program's Jacobian with entries 1e160, which in double
+      // overflowed to NaN, is finite in float128 and would have passed against 1.6e310).
+      if (!(tolerance < 1))
+        throw UnmeasurableJacobian(where + ": its rounding allowance " + format_scalar(tolerance, 3) +
+                                   " reaches |Ω| = 1, so even JᵀΩJ = 0 would pass: a Jacobian this large "
+                                   "leaves the identity unmeasurable in this precision");
       step_tolerance = nan_max(step_tolerance, tolerance);
       largest_defect = nan_max(largest_defect, defect);
       if (defect / tolerance > worst_ratio)

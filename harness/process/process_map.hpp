@@ -55,7 +55,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
         system_json_(std::move(system_json)),
         order_(order),
         double_program_(double_program),
-        digits_(round_trip_digits<T>()),
+        digits_(double_program ? std::numeric_limits<double>::max_digits10 : round_trip_digits<T>()),
         orbit_size_(orbit_size),
         bound_(to_decimal<T>(scale_bound(orbit_size))),
         process_(start(digits_)) {}
@@ -95,7 +95,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     using std::pow;
     if (double_program_ && !process_->uses_extension(jacobian_extension))
       return T(pow(T(10), double_exponent() + 2 - digits_));
-    return epsilon<T>();
+    return double_program_ ? T(std::numeric_limits<double>::epsilon()) : epsilon<T>();
   }
   // A double program's answers may carry more rounding than a few ulps: an implicit solver that
   // stops at 1e-15 relative in q' and forms p' from (q' − q)/h passes its last digits on to p'
@@ -106,6 +106,22 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   // its truncation, s⁴ times the map's fourth derivative, is 10^-32 of that derivative), the
   // largest over the answers' entries. The Jacobian's unit is then at least 1.5·r·10^e / max(1, |J|).
   T last_jacobian_unit() const override { return last_unit_; }
+  // The same measurement of a double program's noise at x for local-order's floor (the last one
+  // kept: the floor is asked for at the same state and h more than once).
+  std::optional<T> answer_noise(const State<T, n>& x, const T& h) const override {
+    if (!double_program_) return std::nullopt;
+    const Vector<T, n> p = momentum_at(x);
+    std::array<std::string, 2 * n> y;
+    for (int i = 0; i < n; ++i) y[i] = to_decimal<T>(x.q[i]), y[n + i] = to_decimal<T>(p[i]);
+    std::string key = to_decimal<T>(h);
+    for (const std::string& v : y) key += " " + v;
+    if (noise_key_ != key) {
+      PrecisionGuard guard(digits_ + 30);
+      noise_ = from_decimal<T>(to_decimal<R>(noise_near(key.substr(0, key.find(' ')), y, h)));
+      noise_key_ = key;
+    }
+    return noise_;
+  }
 
   State<T, n> step(const State<T, n>& x, const T& h) const override {
     const Vector<T, n> p = momentum_at(x);
@@ -158,7 +174,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
       columns = decimals(extrapolated);
       // The noise of the answers, measured at the first Jacobian of each h and every
       // `recheck`-th; the largest so far at this h stands for the steps between.
-      if (step_index % recheck == 0) answer_noise_ = std::max(answer_noise_, answer_noise(step, y, h));
+      if (step_index % recheck == 0) answer_noise_ = std::max(answer_noise_, noise_near(step, y, h));
       // Extrapolated differences carry about 1.5·r/δ of it, δ ≥ 10^-e: relative to |J|.
       last_unit_ = std::max(jacobian_unit(),
                             from_decimal<T>(to_decimal<R>(R(3 * answer_noise_ * pow(R(10), double_exponent()) /
@@ -337,11 +353,11 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     return jacobian_step_++;
   }
 
-  // The spread r of a double program's answers' rounding near y (last_jacobian_unit): fourth
+  // The spread r of a double program's answers' rounding near y (last_jacobian_unit, answer_noise): fourth
   // differences at spacing s along the directions (1, 1, …) and (1, −1, …), each point's answer
   // one request; |Δ⁴ f_i| / √70 for every entry i of (q', p'), the largest. In MPFR at the
   // caller's PrecisionGuard.
-  R answer_noise(const std::string& step, const std::array<std::string, 2 * n>& y, const T& h) const {
+  R noise_near(const std::string& step, const std::array<std::string, 2 * n>& y, const T& h) const {
     using std::abs, std::max, std::pow, std::sqrt;
     const auto image = [&](const std::array<R, 2 * n>& at) {
       nlohmann::json request = {{"h", step}, {"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
@@ -498,7 +514,9 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   mutable long jacobians_ = 0;                // Jacobians by the second instance so far
   mutable std::string jacobian_h_;            // the h of the last Jacobian, and its index there
   mutable long jacobian_step_ = 0;
-  mutable R answer_noise_ = 0;     // a double program's answer noise at this h (answer_noise)
+  mutable R answer_noise_ = 0;     // a double program's answer noise at this h (noise_near)
+  mutable std::string noise_key_;  // answer_noise's last (h, y) and what it measured there
+  mutable T noise_ = 0;
   mutable T last_unit_ = 0;        // the last Jacobian's relative rounding (last_jacobian_unit)
   mutable std::optional<std::pair<State<T, n>, Vector<T, n>>> last_;  // the last answer: (q, w), p
   static constexpr long recheck = 8;
