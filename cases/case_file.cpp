@@ -7,7 +7,6 @@
 #include <limits>
 #include <memory>
 #include <optional>
-#include <regex>
 #include <set>
 #include <sstream>
 

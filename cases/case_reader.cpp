@@ -101,8 +101,7 @@ std::string did_you_mean(const std::string& name, const std::vector<std::string>
 
 // A name a formula may use for a coordinate, velocity or parameter.
 bool is_formula_name(const std::string& name) {
-  static const std::regex pattern(R"([A-Za-z][A-Za-z0-9_]{0,31})");
-  return std::regex_match(name, pattern);
+  return is_name_text(name, 32, "_");
 }
 
 // The formula at `key`, parsed; a CaseError names the field, the character and what was expected.
@@ -125,8 +124,7 @@ namespace vivv::case_reading {
 std::string Reader::number_value(const nlohmann::json& value, const std::string& where) const {
   // Text of digits, points, signs and exponents alone is a decimal, or a malformed one ("+2",
   // ".5"), which decimal_value names as such; anything else is read as a formula.
-  static const std::regex numeral(R"([-+0-9.eE]+)");
-  if (!value.is_string() || std::regex_match(value.get<std::string>(), numeral))
+  if (!value.is_string() || is_numeral_text(value.get<std::string>()))
     return decimal_value(value, where);
   const std::string text = value.get<std::string>();
   const std::string expected =

@@ -9,7 +9,6 @@
 #include <cstddef>
 #include <memory>
 #include <optional>
-#include <regex>
 #include <set>
 #include <string>
 #include <utility>
@@ -18,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cases/case_file.hpp"
+#include "cases/lexical_forms.hpp"
 #include "core/formulas/formula.hpp"
 
 namespace vivv::case_reading {
@@ -100,14 +100,13 @@ class Reader {
   std::string decimal(const std::string& key) { return decimal_value(get(key), field(key)); }
   std::string decimal_value(const nlohmann::json& value, const std::string& where) const {
     // The form report.json keeps (reports/schema.json): "-0.5", "2", "1.25e-3"; not "+2", ".5", "2.".
-    static const std::regex pattern(R"(-?\d+(\.\d+)?([eE][+-]?\d+)?)");
     if (!value.is_string())
       throw CaseError(file_, where, "expected a decimal string such as \"1.5\", got " + echo(value));
     std::string text = value.get<std::string>();
     if (text.size() > longest_number)
       throw CaseError(file_, where, "expected a decimal number of at most " + std::to_string(longest_number) +
                                         " characters, got " + std::to_string(text.size()));
-    if (!std::regex_match(text, pattern))
+    if (!is_decimal_text(text))
       throw CaseError(file_, where, "expected a decimal number such as \"-0.5\", \"2\" or \"1.25e-3\" (digits on "
                                     "both sides of a point, no '+'), got \"" + echo(text) + "\"");
     if (!decimal_value_of(text))
@@ -136,9 +135,8 @@ class Reader {
   // A number in [0, 1] written as a decimal string or a fraction "p/q".
   std::string fraction(const std::string& key) {
     const auto& value = get(key);
-    static const std::regex pattern(R"(\d+(\.\d+)?(/[1-9]\d*)?)");
     if (!value.is_string() || value.get<std::string>().size() > longest_echo ||
-        !std::regex_match(value.get<std::string>(), pattern))
+        !is_fraction_text(value.get<std::string>()))
       fail(key, "expected a decimal or a fraction such as \"1/2\", got " + echo(value));
     std::string text = value.get<std::string>();
     auto slash = text.find('/');

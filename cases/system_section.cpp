@@ -1,11 +1,11 @@
 #include <algorithm>
 #include <map>
 #include <memory>
-#include <regex>
 
 #include "cases/case_sections.hpp"
 #include "cases/catalogue.hpp"
 #include "cases/formula_parser.hpp"
+#include "cases/lexical_forms.hpp"
 #include "cases/systems.hpp"
 #include "core/formulas/formula_system.hpp"
 
@@ -18,7 +18,7 @@ void read_formula_system(Reader& system, CaseSpec& spec) {
   if (std::find(catalogue.begin(), catalogue.end(), spec.system) != catalogue.end())
     system.fail("name", "'" + spec.system + "' is a catalogue system; a system given by its lagrangian needs a "
                         "name of its own");
-  if (!is_formula_name(spec.system) && !std::regex_match(spec.system, std::regex(R"([A-Za-z][A-Za-z0-9_.-]{0,63})")))
+  if (!is_formula_name(spec.system) && !is_name_text(spec.system, 64, "_.-"))
     system.fail("name", "expected a name of letters, digits, '_', '-' and '.', starting with a letter, got \"" +
                             echo(spec.system) + "\"");
   auto definition = std::make_shared<FormulaSystemDefinition>();

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <regex>
+#include "cases/lexical_forms.hpp"
 
 namespace vivv {
 
@@ -41,8 +41,7 @@ std::string xml_escape(const std::string& text) {
 }
 
 bool is_decimal(const std::string& text) {
-  static const std::regex pattern(R"(-?[0-9]+(\.[0-9]+)?([eE][+-]?[0-9]+)?)");
-  return std::regex_match(text, pattern);
+  return is_decimal_text(text);
 }
 
 namespace {

@@ -90,3 +90,81 @@ def test_a_missing_library_declines_naming_the_interpreter(monkeypatch):
     monkeypatch.setitem(sys.modules, "numpy", None)  # import numpy now raises ImportError
     answers = talk(euler, [greeting(17)], arithmetic="numpy")
     assert answers[0]["error"].startswith("this program computes with numpy, which " + sys.executable)
+
+
+REQUEST = {"h": "0.1", "q": ["1"], "p": ["0"]}
+
+
+def returns(value):
+    def my_step(h, q, p):
+        return value
+    return my_step
+
+
+@pytest.mark.parametrize("value, says", [
+    (None, "returned None; expected (q, p), each 1 real numbers"),
+    (1.5, "returned 1.5; expected (q, p)"),
+    ("abc", "returned 'abc'; expected (q, p)"),
+    (([1.0, 2.0], [0.0]), "2 numbers where 1 belong"),
+    (([None], [0.0]), "None is not a number"),
+    (([1 + 2j], [0.0]), "(1+2j) is complex"),
+])
+def test_a_bad_return_value_names_the_users_function_and_the_value(value, says):
+    answer = talk(returns(value), [greeting(17), REQUEST], arithmetic="float")[1]["error"]
+    assert "returns.<locals>.my_step (defined at " + __file__ in answer
+    assert says in answer
+    assert "vivv_map" not in answer.split("(defined at")[1].split(")")[0]
+
+
+def test_a_numpy_complex_result_is_refused_not_truncated():
+    numpy = pytest.importorskip("numpy")
+    step = returns((numpy.array([1 + 1e-3j]), numpy.array([0.0])))
+    answer = talk(step, [greeting(17), REQUEST], arithmetic="numpy")[1]["error"]
+    assert "is complex" in answer and "imaginary part would be lost" in answer
+
+
+@pytest.mark.parametrize("matrix, says", [(None, "returned None"), ([1.0, 0.0, 0.0, 1.0], "4 rows"),
+                                          ([[1.0, 0.0], [0.0]], "1 numbers where 2 belong")])
+def test_a_bad_jacobian_names_the_users_function(matrix, says):
+    def my_jacobian(h, q, p):
+        return matrix
+    request = dict(REQUEST, jacobian=True)
+    answers = talk(euler, [greeting(17, ["jacobian"]), request], arithmetic="float", jacobian=my_jacobian)
+    assert "my_jacobian (defined at " in answers[1]["error"] and says in answers[1]["error"]
+
+
+def test_an_error_in_the_users_code_is_placed_there_not_in_vivv_map():
+    def my_step(h, q, p):
+        return [q[0] / 0], [p[0]]
+    answer = talk(my_step, [greeting(17), REQUEST], arithmetic="float")[1]["error"]
+    assert answer.startswith("ZeroDivisionError") and f"(at {__file__}:" in answer
+
+
+def test_an_error_text_with_a_lone_surrogate_is_still_json_vivv_reads():
+    name = b"caf\xe9.dat".decode("utf-8", "surrogateescape")
+
+    def my_step(h, q, p):
+        raise FileNotFoundError(name)
+    line = io.StringIO()
+    serve(my_step, input=io.StringIO(json.dumps(greeting(17)) + "\n" + json.dumps(REQUEST) + "\n"), output=line,
+          arithmetic="float")
+    answer = line.getvalue().splitlines()[1]
+    text = json.loads(answer)["error"]
+    assert not any(0xD800 <= ord(c) <= 0xDFFF for c in text)  # a strict JSON reader takes the line
+    assert "caf\\xe9.dat" in text
+
+
+def test_what_the_users_code_prints_goes_to_standard_error():
+    import subprocess
+    program = (
+        "import sys\n"
+        f"sys.path.insert(0, {os.path.join(os.path.dirname(os.path.abspath(__file__)), '..')!r})\n"
+        "from vivv_map import serve\n"
+        "def setup(system, n, number):\n    print('setting up', n)\n"
+        "def step(h, q, p):\n    print('debug', q)\n    return [q[0] + h * p[0]], [p[0] - h * q[0]]\n"
+        "serve(step, arithmetic='float', setup=setup)\n")
+    lines = json.dumps(greeting(17)) + "\n" + json.dumps(REQUEST) + "\n"
+    done = subprocess.run([sys.executable, "-c", program], input=lines, capture_output=True, text=True, timeout=60)
+    answers = [json.loads(line) for line in done.stdout.splitlines()]
+    assert answers[0] == {"protocol": PROTOCOL} and set(answers[1]) == {"q", "p"}
+    assert "setting up 1" in done.stderr and "debug [1.0]" in done.stderr

@@ -10,7 +10,11 @@
 until vivv closes the program's input. Numbers are decimal strings with at least D significant
 digits.
 """
+import inspect
+import io
 import json
+import numbers as _numbers
+import os
 import sys
 import traceback
 
@@ -26,8 +30,95 @@ class Decline(Exception):
 
 
 def _reply(output, message):
-    output.write(json.dumps(message) + "\n")
+    # ensure_ascii writes a lone surrogate (a file name decoded with surrogateescape) as \udcxx,
+    # which no JSON reader takes; such a character is written as its escape's text instead.
+    text = json.dumps(message)
+    if "\\ud" in text:
+        text = json.dumps(_without_surrogates(message))
+    output.write(text + "\n")
     output.flush()
+
+
+def _without_surrogates(value):
+    if isinstance(value, str):
+        try:  # bytes decoded with surrogateescape: their own escapes, \xe9
+            return value.encode("utf-8", "surrogateescape").decode("utf-8", "backslashreplace")
+        except UnicodeEncodeError:  # any other lone surrogate: \ud800
+            return value.encode("utf-8", "backslashreplace").decode("utf-8")
+    if isinstance(value, dict):
+        return {_without_surrogates(k): _without_surrogates(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_without_surrogates(v) for v in value]
+    return value
+
+
+def _protocol_channel():
+    """The process's standard output kept for the protocol alone: file descriptor 1 becomes a copy
+    of standard error, so that whatever the user's code prints — print(), a library's C code —
+    reaches vivv's record of the program's standard error instead of breaking the protocol."""
+    sys.stdout.flush()
+    channel = os.dup(1)
+    os.dup2(2, 1)
+    return io.TextIOWrapper(os.fdopen(channel, "wb", buffering=0), encoding="utf-8", newline="\n",
+                            write_through=True)
+
+
+class BadAnswer(Exception):
+    """A value the user's step() or jacobian() returned that is not what the protocol carries."""
+
+
+def _where(function):
+    """"name (defined at file:line)" for the user's function."""
+    name = getattr(function, "__qualname__", None) or getattr(function, "__name__", None) or repr(function)
+    try:
+        return f"{name} (defined at {inspect.getsourcefile(function)}:{inspect.getsourcelines(function)[1]})"
+    except (TypeError, OSError):
+        return name
+
+
+def _shown(value):
+    text = repr(value)
+    return text if len(text) <= 200 else text[:200] + "…"
+
+
+def _real_numbers(values, size, what, function, returned):
+    """`values` as a list of `size` real numbers, or BadAnswer naming the function and the value."""
+    expected = f"expected {what}"
+    if isinstance(values, (str, bytes)) or values is None or not hasattr(values, "__iter__"):
+        raise BadAnswer(f"{_where(function)} returned {_shown(returned)}; {expected}")
+    values = list(values)
+    if len(values) != size:
+        raise BadAnswer(f"{_where(function)} returned {_shown(returned)}: {len(values)} numbers where "
+                        f"{size} belong; {expected}")
+    for x in values:
+        kind = type(x).__name__
+        if isinstance(x, (bool, str, bytes)) or x is None:
+            raise BadAnswer(f"{_where(function)} returned {_shown(returned)}: {_shown(x)} is not a number; {expected}")
+        if isinstance(x, _numbers.Complex) and not isinstance(x, _numbers.Real) or "complex" in kind:
+            raise BadAnswer(f"{_where(function)} returned {_shown(returned)}: {_shown(x)} is complex; {expected} "
+                            "(real: a complex value's imaginary part would be lost)")
+        if not isinstance(x, _numbers.Real) and not hasattr(x, "__float__"):
+            raise BadAnswer(f"{_where(function)} returned {_shown(returned)}: {_shown(x)} ({kind}) is not a "
+                            f"number; {expected}")
+    return values
+
+
+def _state(result, dimension, function):
+    what = f"(q, p), each {dimension} real numbers"
+    if isinstance(result, (str, bytes)) or not hasattr(result, "__len__") or len(result) != 2:
+        raise BadAnswer(f"{_where(function)} returned {_shown(result)}; expected {what}")
+    q, p = result
+    return (_real_numbers(q, dimension, what, function, result), _real_numbers(p, dimension, what, function, result))
+
+
+def _matrix(result, size, function):
+    what = f"a {size} x {size} matrix d(q', p')/d(q, p): {size} rows of {size} real numbers"
+    if isinstance(result, (str, bytes)) or result is None or not hasattr(result, "__iter__"):
+        raise BadAnswer(f"{_where(function)} returned {_shown(result)}; expected {what}")
+    rows = list(result)
+    if len(rows) != size:
+        raise BadAnswer(f"{_where(function)} returned {_shown(result)}: {len(rows)} rows; expected {what}")
+    return [_real_numbers(row, size, what, function, result) for row in rows]
 
 
 def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, input=None, output=None):
@@ -44,7 +135,7 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, input=None, o
     jacobian() is sent to vivv as an error answer with its traceback's last line.
     """
     input = sys.stdin if input is None else input
-    output = sys.stdout if output is None else output
+    output = _protocol_channel() if output is None else output
     numbers = arithmetic_named(arithmetic)
     greeting = json.loads(input.readline() or "null")
     if not isinstance(greeting, dict) or greeting.get("protocol") != PROTOCOL:
@@ -70,13 +161,25 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, input=None, o
         q = numbers.vector(numbers.number(x) for x in request["q"])
         p = numbers.vector(numbers.number(x) for x in request["p"])
         try:
-            q_next, p_next = step(h, q, p)
+            q_next, p_next = _state(step(h, q, p), dimension, step)
             answer = {"q": write(q_next), "p": write(p_next)}
             if send_jacobian and request.get(JACOBIAN) is True:  # vivv asks where it reads one
-                answer[JACOBIAN] = [write(row) for row in jacobian(h, q, p)]
+                answer[JACOBIAN] = [write(row) for row in _matrix(jacobian(h, q, p), 2 * dimension, jacobian)]
+        except BadAnswer as bad:  # what the user's function returned, named with the function
+            _reply(output, {"error": str(bad)})
+            return 1
         except Exception as error:  # the user's code: vivv names the request and this text
-            where = traceback.extract_tb(error.__traceback__)[-1]
-            _reply(output, {"error": f"{type(error).__name__}: {error} (at {where.filename}:{where.lineno})"})
+            _reply(output, {"error": _described(error)})
             return 1
         _reply(output, answer)
     return 0
+
+
+def _described(error):
+    """The exception and the line of the user's code it came from (the innermost frame outside
+    vivv_map), so that an error is never blamed on this package's own lines."""
+    frames = traceback.extract_tb(error.__traceback__)
+    package = os.path.dirname(os.path.abspath(__file__))
+    user = [f for f in frames if not os.path.abspath(f.filename).startswith(package + os.sep)]
+    where = (user or frames)[-1]
+    return f"{type(error).__name__}: {error} (at {where.filename}:{where.lineno})"

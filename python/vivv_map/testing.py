@@ -13,9 +13,15 @@ Verdicts are read from the report.json vivv writes, never from its console.
 import json
 import os
 import pathlib
+import shlex
 import shutil
 import subprocess
 import tempfile
+
+# After a timeout vivv gets SIGTERM, on which it ends the programs it started (their process groups
+# included) and exits; SIGKILL only if it has not within this many seconds (SIGKILL would leave
+# every helper a program started in a group of its own).
+TERMINATION_GRACE_SECONDS = 20
 
 
 class VivvError(RuntimeError):
@@ -67,15 +73,37 @@ def find_vivv(vivv=None):
 def run_vivv(*cases, vivv=None, out=None, baseline=None, allow_process=True, args=(), timeout=3600):
     """Run `vivv run CASES --out OUT` (a temporary directory when OUT is None) and return its Run.
     baseline: a report.json to compare every claim's orders and error constants with
-    (--baseline). args: more options, e.g. ["--scalar", "mpfr"]. Exit 2 or 3 raises VivvError."""
+    (--baseline). args: more options, a list (["--scalar", "mpfr"]) or one string split as a
+    shell would ("--scalar mpfr"). Exit 2 or 3, a vivv that cannot be started, or a run beyond
+    `timeout` seconds (vivv is then ended with SIGTERM, and SIGKILL only after
+    TERMINATION_GRACE_SECONDS) raises VivvError."""
     out = pathlib.Path(out if out is not None else tempfile.mkdtemp(prefix="vivv-run-"))
+    if isinstance(args, (str, bytes)):
+        args = shlex.split(args if isinstance(args, str) else args.decode())
     command = [find_vivv(vivv), "run", *map(str, cases), "--out", str(out), "--quiet", *map(str, args)]
     if allow_process:
         command.append("--allow-process")
     if baseline is not None:
         command += ["--baseline", str(baseline)]
-    result = subprocess.run(command, capture_output=True, text=True, timeout=timeout)
-    console = result.stdout + result.stderr
-    if result.returncode not in (0, 1, 4):
-        raise VivvError(f"vivv exited {result.returncode}: {console.strip()[-2000:]}")
-    return Run(result.returncode, console, out)
+    try:
+        process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    except OSError as error:  # not found, not executable
+        raise VivvError(f"vivv could not be started as {command[0]!r}: {error}") from None
+    try:
+        stdout, stderr = process.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        process.terminate()
+        try:
+            stdout, stderr = process.communicate(timeout=TERMINATION_GRACE_SECONDS)
+            ended = "ended by SIGTERM"
+        except subprocess.TimeoutExpired:
+            process.kill()
+            stdout, stderr = process.communicate()
+            ended = f"killed (it did not end within {TERMINATION_GRACE_SECONDS} s of SIGTERM)"
+        console = (stdout or "") + (stderr or "")
+        raise VivvError(f"vivv ran beyond the timeout of {timeout} s and was {ended}: {console.strip()[-2000:]}") \
+            from None
+    console = stdout + stderr
+    if process.returncode not in (0, 1, 4):
+        raise VivvError(f"vivv exited {process.returncode}: {console.strip()[-2000:]}")
+    return Run(process.returncode, console, out)

@@ -25,7 +25,12 @@ import subprocess
 import sys
 
 EXTREME_NUMBERS = ["1e5000", "-1e5000", "1e-400", "0", "-0", "nan", "inf", "+2", ".5", "2.", "1" * 400,
-                   "0x10", "1/0", "", " 1", "1e", "-", "9" * 40]
+                   "0x10", "1/0", "", " 1", "1e", "-", "9" * 40,
+                   # Long numbers in any numeric field (issue 51: std::regex recursed per character
+                   # and a 50,000-digit number ended vivv with SIGSEGV): valid, with a stray letter,
+                   # a long exponent, a long fraction.
+                   "1." + "3" * 50000, "1." + "3" * 50000 + "x", "7" * 200000, "1e" + "9" * 50000,
+                   "1/" + "3" * 50000, "-" + "0" * 100000 + "1"]
 EXTREME_FORMULAS = ["", "(", "q^", "q^q^q^q^q^q^q", "sin(" * 200 + "q" + ")" * 200, "1/0", "sqrt(-1)",
                     "log(0)", "q*", "L(q, w)", "w^2/2 - cos(q", "w^1e9", "exp(exp(exp(q)))", "q/(q-q)",
                     "(" * 9990 + "q" + ")" * 9990, "-(" * 6600 + "q" + ")" * 6600, "q^" * 9990 + "q",
