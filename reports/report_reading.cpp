@@ -242,6 +242,25 @@ void check_verdicts_agree(const nlohmann::json& report, const std::string& path)
                       ": the report was edited or damaged after vivv wrote it");
 }
 
+// Each case of a report appears once, judged or recorded as refused (or as not run): the same
+// name twice — a refused entry that is also a judged case, a refused entry written twice — is an
+// edited report, refused by vivv report and --baseline alike.
+void check_names_once(const nlohmann::json& report, const std::string& path) {
+  std::map<std::string, std::string> seen;  // name -> where
+  const auto see = [&](const nlohmann::json& entry, const std::string& where) {
+    if (!entry.is_object() || !entry.contains("name") || !entry["name"].is_string()) return;  // the schema says
+    const auto [it, fresh] = seen.emplace(entry["name"].get<std::string>(), where);
+    if (!fresh)
+      throw ReportError(path + ": " + where + ": the case '" + it->first + "' is also in " + it->second +
+                        ": a case appears once in a report; the report was edited or damaged after vivv wrote it");
+  };
+  const nlohmann::json& cases = report.at("cases");
+  for (std::size_t i = 0; i < cases.size(); ++i) see(cases[i], "cases[" + std::to_string(i) + "]");
+  const nlohmann::json refused = report.value("refused", nlohmann::json::array());
+  if (refused.is_array())
+    for (std::size_t i = 0; i < refused.size(); ++i) see(refused[i], "refused[" + std::to_string(i) + "]");
+}
+
 }  // namespace
 
 nlohmann::json read_report(const std::string& path) {
@@ -267,6 +286,7 @@ nlohmann::json read_report(const std::string& path) {
     throw ReportError(path + ": " + *violation +
                       " (reports/schema.json): a damaged or edited report");
   check_verdicts_agree(report, path);
+  check_names_once(report, path);
   return report;
 }
 

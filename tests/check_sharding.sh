@@ -41,6 +41,12 @@ case "$mode" in
     fi
     grep -q "run.shard.suite: not the list of cases" "$out/foreign.log" || { cat "$out/foreign.log"; exit 1; }
     test ! -e "$out/foreign/report.json"
+    # Shards run with the same --claims written in another order merge: the same set is the same
+    # selection (issue 51). Each shard's exit is its verdicts'; the merge is what is checked.
+    "$vivv" run "$@" --claims global-order,lagrangian-order --shard 1/2 --out "$out/claims1" --quiet > /dev/null || true
+    "$vivv" run "$@" --claims lagrangian-order,global-order --shard 2/2 --out "$out/claims2" --quiet > /dev/null || true
+    "$vivv" report "$out/claims1/report.json" "$out/claims2/report.json" --out "$out/claims-merged" \
+      > "$out/claims.log" 2>&1 || { echo "shards with the same --claims in another order do not merge:"; cat "$out/claims.log"; exit 1; }
     ;;
   *) echo "usage: check_sharding.sh jobs|shards VIVV OUT CASE.json ..." >&2; exit 2 ;;
 esac

@@ -63,6 +63,22 @@ inline std::string_view cut_at_character(std::string_view text, std::size_t at_m
   return text.substr(0, end);
 }
 
+// `text` in at most `at_most` bytes: all of it, or its beginning and its end with
+// " … (N bytes left out) … " between them, each cut at a character boundary. The end of a
+// program's standard error — the exception's line — says why it failed; a cut that kept only the
+// beginning dropped exactly that.
+inline std::string cut_in_the_middle(std::string_view text, std::size_t at_most) {
+  if (text.size() <= at_most) return std::string(text);
+  const std::size_t marker = 48;  // the longest " … (N bytes left out) … "
+  const std::size_t budget = at_most > marker ? (at_most - marker) / 2 : 0;
+  const std::string_view head = cut_at_character(text, budget);
+  std::size_t start = text.size() - budget;
+  while (start < text.size() && (static_cast<unsigned char>(text[start]) & 0xC0) == 0x80) ++start;
+  const std::string_view tail = text.substr(start);
+  return std::string(head) + " … (" + std::to_string(text.size() - head.size() - tail.size()) +
+         " bytes left out) … " + std::string(tail);
+}
+
 // `text` cut to at most `at_most` bytes at a character boundary, with "… (N characters)" when
 // it was longer, and repaired to UTF-8: how a program's text is quoted in a message.
 inline std::string quoted_text(std::string_view text, std::size_t at_most = 300) {

@@ -169,6 +169,12 @@ RunOptions parse_run_options(const std::vector<std::string>& args) {
           options.claims.push_back(id);
         start = end + 1;
       }
+      // The same set is the same selection, in the registry's order: shards run with
+      // "global-order,local-order" and "local-order,global-order" merge.
+      const auto& known = claim_ids();
+      const auto rank = [&](const std::string& id) { return std::find(known.begin(), known.end(), id) - known.begin(); };
+      std::sort(options.claims.begin(), options.claims.end(),
+                [&](const std::string& a, const std::string& b) { return rank(a) < rank(b); });
     }
     else if (arg == "--baseline-tolerance")
       // Above 0 (a constant equal to the last digit would regress) and at most 10 (×11).

@@ -155,10 +155,12 @@ std::function<void(const std::string&)> progress_printer(bool enabled) {
   return [printer](const std::string& message) { printer->print(message); };
 }
 
-// What a refusal or a case that could not run records of its error: at most 2000 characters,
-// cut between characters, in UTF-8.
+// What a refusal or a case that could not run records of its error: at most 2000 bytes, in
+// UTF-8, its beginning and its end (the program, the request and the failure come first, the
+// program's standard error last, and the end of that — the exception's line — says why), cut in
+// the middle between characters.
 std::string recorded_message(const std::exception& error) {
-  return repaired_utf8(cut_at_character(error.what(), 2000));
+  return repaired_utf8(cut_in_the_middle(error.what(), 2000));
 }
 
 // Runs one case; solver failures and non-regular Lagrangians are bad input.

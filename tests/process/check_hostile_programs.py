@@ -9,9 +9,10 @@ usage: check_hostile_programs.py VIVV WORK_DIR VARIANT
   deep-answer, deep-decline, deep-error
       JSON nested 120 000 deep in an answer, a refusal of the greeting and an error answer: the
       case could not run (exit 4, report.json and junit.xml record it) naming the depth, never a crash.
-  stderr-bytes, terminal-escapes, cut-quote
+  stderr-bytes, terminal-escapes, cut-quote, logs-then-raises
       a program's stderr that is not UTF-8, one with terminal escape sequences, a line that
-      vivv's quoting cuts inside a two-byte character: under --keep-going the report is written,
+      vivv's quoting cuts inside a two-byte character, a long log and then an exception (whose
+      line, the end of stderr, the record keeps: cut in the middle): under --keep-going the report is written,
       UTF-8 throughout, the bytes repaired (U+FFFD), the escapes kept in report.json and shown
       escaped on the terminal, the cut at a character boundary; without it the same record (the
       case could not run: exit 4), UTF-8 and no raw control character on the terminal.
@@ -124,6 +125,13 @@ def hostile_text(vivv, work, mode, problems):
     if mode == "terminal-escapes":
         expect("\x1b[2J\x1b[31mred" in message, f"report.json does not keep the text: {message!r}", problems)
         expect("\\x1b[2J" in terminal, f"the terminal does not show the escape: {terminal[-400:]!r}", problems)
+    if mode == "logs-then-raises":
+        for where, text in (("report.json", message), ("junit.xml", (out_dir / "junit.xml").read_text()),
+                            ("the terminal", terminal)):
+            expect("ValueError: the cause is at the end of stderr" in text,
+                   f"{where} lost the exception's line: {text[-300:]!r}", problems)
+        expect(len(message) <= 2000 and "bytes left out" in message, f"not cut in the middle: {message!r}",
+               problems)
     if mode == "cut-quote":
         expect(re.search("x\u00e9+… \\(801 characters\\)", message) and "\ufffd" not in message,
                f"not cut at a character boundary: {message[-200:]!r}", problems)
@@ -248,7 +256,7 @@ def main(argv):
             escape(vivv, work, variant[len("escape-"):], problems)
         elif variant.startswith("deep-"):
             deep(vivv, work, variant, problems)
-        elif variant in ("stderr-bytes", "terminal-escapes", "cut-quote"):
+        elif variant in ("stderr-bytes", "terminal-escapes", "cut-quote", "logs-then-raises"):
             hostile_text(vivv, work, variant, problems)
         elif variant in ("case-path-bytes", "out-bytes"):
             path_bytes(vivv, work, variant.split("-")[0], problems)

@@ -109,6 +109,10 @@ for count, line in enumerate(sys.stdin):
                                     else b"fault.py: \x1b[2J\x1b[31mred\x1b]0;title\x07 \xc2\x9b")
             sys.stderr.buffer.flush()
             sys.exit(3)
+        if mode == "logs-then-raises":  # a long log on stderr, then the exception that says why
+            for k in range(80):
+                print(f"fault.py log line {k}: computing the step from q = {q}", file=sys.stderr)
+            raise ValueError("the cause is at the end of stderr")
         if mode == "cut-quote":
             answer = "x" + "\u00e9" * 400
         if mode == "overflow":

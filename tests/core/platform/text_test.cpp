@@ -39,5 +39,20 @@ TEST(TerminalSafe, ShowsControlCharactersEscapedAndKeepsLines) {
   EXPECT_EQ(terminal_safe("\xC3\xA9 stays, \xFF becomes"), "\xC3\xA9 stays, " + replacement + " becomes");
 }
 
+// A program's record keeps the end of its standard error — the exception's line — and cuts in
+// the middle, between characters: 2000 bytes at most, whatever came first.
+TEST(Utf8Cut, InTheMiddleKeepsTheBeginningAndTheEnd) {
+  EXPECT_EQ(cut_in_the_middle("short", 2000), "short");
+  std::string text = "the map program 'p' at request 3 failed: stderr's end: ";
+  for (int i = 0; i < 400; ++i) text += "log line \xC3\xA9 ";
+  text += "\nValueError: h must be positive";
+  const std::string cut = cut_in_the_middle(text, 2000);
+  EXPECT_LE(cut.size(), 2000u);
+  EXPECT_EQ(cut.rfind("ValueError: h must be positive"), cut.size() - 30);
+  EXPECT_EQ(cut.find("the map program 'p'"), 0u);
+  EXPECT_NE(cut.find(" bytes left out) … "), std::string::npos);
+  EXPECT_EQ(repaired_utf8(cut), cut);  // no character cut in two
+}
+
 }  // namespace
 }  // namespace vivv
