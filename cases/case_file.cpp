@@ -160,6 +160,10 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
         "its reference flow alone took 11 min");
   }
   spec.discretization = read_discretization(reader.object("discretization"), spec.dimension, spec.parameters);
+  // A program that computes in double is judged in double: "scalar" need not repeat what
+  // "precision" says (another scalar, written or given as --scalar, is refused by
+  // check_precision_options, naming the field).
+  if (spec.discretization.process_precision == "double" && !reader.has("scalar")) spec.scalar = "double";
   if (reader.has("past_discretization"))
     spec.past_discretization =
         read_discretization(reader.object("past_discretization"), spec.dimension, spec.parameters);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/harness/verdicts/synthetic_sweeps.hpp"
+#include "tests/test_scalars.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -71,7 +72,7 @@ class OrderFitTest : public ::testing::Test {
   std::optional<PrecisionGuard> guard_;
 };
 using Scalars = ::testing::Types<double, quad, mpfr_real>;
-TYPED_TEST_SUITE(OrderFitTest, Scalars);
+TYPED_TEST_SUITE(OrderFitTest, Scalars, testing::ScalarNames);
 
 // One row of the recovery table: e = C h^p (1 + c h) on the given steps.
 struct PowerLawRow {

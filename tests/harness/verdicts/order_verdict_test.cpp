@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tests/harness/verdicts/synthetic_sweeps.hpp"
+#include "tests/test_scalars.hpp"
 
 namespace vivv {
 namespace {
@@ -26,7 +27,7 @@ class OrderVerdictTest : public ::testing::Test {
   std::optional<PrecisionGuard> guard_;
 };
 using VerdictScalars = ::testing::Types<double, quad, mpfr_real>;
-TYPED_TEST_SUITE(OrderVerdictTest, VerdictScalars);
+TYPED_TEST_SUITE(OrderVerdictTest, VerdictScalars, testing::ScalarNames);
 
 // ---------------------------------------------------------------- verdicts and negative controls
 
