@@ -9,8 +9,8 @@ namespace vivv {
 template <class System>
 struct Counted : System {
   static inline long evaluations = 0;
-  template <class S>
-  S lagrangian(const Point<S, System::dimension>& q, const Point<S, System::dimension>& w) const {
+  template <class P>
+  auto lagrangian(const P& q, const P& w) const {
     ++evaluations;
     return System::lagrangian(q, w);
   }

@@ -123,6 +123,7 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   spec.q = initial.numbers("q", spec.dimension);
   spec.w = initial.numbers("w", spec.dimension);
   initial.finish();
+  check_memory(spec, file, "long double", 0, " (in which vivv checks the initial state before the run)");
   check_initial_state(spec, file);
 
   spec.final_time = reader.number("T");
@@ -146,10 +147,6 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   }
 
   if (reader.has("scalar")) spec.scalar = reader.one_of("scalar", scalar_names());
-  if (spec.scalar != "mpfr" && spec.dimension > 2)
-    reader.fail("scalar", "a system of " + std::to_string(spec.dimension) +
-                              " coordinates runs in mpfr only (double, long double and float128 are built for 1 "
-                              "and 2 coordinates)");
   if (reader.has("digits")) {
     if (spec.scalar != "mpfr")
       reader.fail("digits", "sets the MPFR working precision, and this case runs in \"" + spec.scalar + "\"");
@@ -159,6 +156,7 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
         "long double; at 1000 the paper example's midpoint case takes 3 min and at 2000 "
         "its reference flow alone took 11 min");
   }
+  check_memory(spec, file, spec.scalar, spec.digits);
   spec.discretization = read_discretization(reader.object("discretization"), spec.dimension, spec.parameters);
   // A program that computes in double is judged in double: "scalar" need not repeat what
   // "precision" says (another scalar, written or given as --scalar, is refused by
@@ -379,15 +377,11 @@ void check_precision_options(const CaseSpec& spec, const std::optional<std::stri
                              std::optional<int> digits) {
   const std::string effective = scalar ? *scalar : spec.scalar;
   const std::string option = scalar ? "--scalar " + effective : "\"scalar\": \"" + effective + "\"";
+  if (scalar || digits) check_memory(spec, spec.file, effective, digits ? *digits : spec.digits);
   if (digits && effective != "mpfr")
     throw CaseError(spec.file, "--digits",
                     "sets the MPFR working precision, and this case runs in \"" + effective +
                         "\" (" + option + ")");
-  if (effective != "mpfr" && spec.dimension > 2)
-    throw CaseError(spec.file, "--scalar",
-                    "a system of " + std::to_string(spec.dimension) +
-                        " coordinates runs in mpfr only, not in " + option +
-                        " (double, long double and float128 are built for 1 and 2 coordinates)");
   // double is the one scalar whose range is narrower than what a case file may write (about
   // 1e±4900; long double and float128 reach 1e±4932): "1e400" once gave only "vivv: stod".
   if (effective == "double")

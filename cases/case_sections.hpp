@@ -30,4 +30,11 @@ const RegisteredSystem* registered_system(Reader& system);
 // regular there, checked in long double before any work.
 void check_initial_state(const CaseSpec& spec, const std::string& file);
 
+// A formula system whose dense second derivatives would not fit in this machine's memory, in
+// `scalar` at `digits`: bad input naming the estimate (field system.coordinates). The estimate is
+// the tape's operations times one jet of L's 2n variables, 1 + 2n + (2n)² numbers: what evaluating
+// L in the jets the DEL and the Legendre transforms take keeps at once.
+void check_memory(const CaseSpec& spec, const std::string& file, const std::string& scalar, int digits,
+                  const std::string& purpose = "");
+
 }  // namespace vivv::case_reading

@@ -1,4 +1,7 @@
+#include <unistd.h>
+
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <memory>
 
@@ -26,7 +29,7 @@ void read_formula_system(Reader& system, CaseSpec& spec) {
   definition->coordinates = system.strings("coordinates");
   definition->velocities = system.strings("velocities");
   const std::size_t n = definition->coordinates.size();
-  if (n < 1 || n > 4) system.fail("coordinates", "expected 1 to 4 coordinate names, got " + std::to_string(n));
+  if (n < 1) system.fail("coordinates", "expected at least one coordinate name, got none");
   if (definition->velocities.size() != n)
     system.fail("velocities", "expected " + std::to_string(n) + " velocity names, one per coordinate, got " +
                                   std::to_string(definition->velocities.size()));
@@ -100,8 +103,7 @@ void read_formula_system(Reader& system, CaseSpec& spec) {
     switch (n) {
       case 1: make_formula_system<long double, 1>(*definition); break;
       case 2: make_formula_system<long double, 2>(*definition); break;
-      case 3: make_formula_system<long double, 3>(*definition); break;
-      default: make_formula_system<long double, 4>(*definition); break;
+      default: make_formula_system<long double, any_size>(*definition); break;
     }
   } catch (const FormulaError& error) {
     system.fail("lagrangian", describe_formula_error(text, error));
@@ -136,8 +138,9 @@ namespace {
 template <class System>
 void check_regular(const System& system, const CaseSpec& spec, const std::string& file) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
-  Vector<T, n> q, w;
+  constexpr int N = System::dimension;
+  const int n = spec.dimension;
+  Vector<T, N> q(n), w(n);
   for (int i = 0; i < n; ++i) q[i] = from_decimal<T>(spec.q[i]), w[i] = from_decimal<T>(spec.w[i]);
   const auto d = lagrangian_derivatives(system, q, w);
   const std::string field = spec.formula ? "system.lagrangian" : "initial";
@@ -146,7 +149,7 @@ void check_regular(const System& system, const CaseSpec& spec, const std::string
     throw CaseError(file, field, "L is not finite at the initial state: the state is outside the Lagrangian's domain");
   const T determinant = d.d2L_dw2.determinant();
   const T scale = d.d2L_dw2.cwiseAbs().maxCoeff();
-  Eigen::FullPivLU<Matrix<T, n, n>> lu(d.d2L_dw2);
+  Eigen::FullPivLU<Matrix<T, N, N>> lu(d.d2L_dw2);
   lu.setThreshold(1024 * epsilon<T>());
   if (!isfinite(determinant) || !(scale > 0) || !lu.isInvertible())
     throw CaseError(file, field, "the Lagrangian is not regular at the initial state: det d2L/dw2 = " +
@@ -171,14 +174,43 @@ void check_initial_state(const CaseSpec& spec, const std::string& file) {
     switch (spec.dimension) {
       case 1: check_regular(make_formula_system<T, 1>(*spec.formula), spec, file); break;
       case 2: check_regular(make_formula_system<T, 2>(*spec.formula), spec, file); break;
-      case 3: check_regular(make_formula_system<T, 3>(*spec.formula), spec, file); break;
-      default: check_regular(make_formula_system<T, 4>(*spec.formula), spec, file); break;
+      default: check_regular(make_formula_system<T, any_size>(*spec.formula), spec, file); break;
     }
     return;
   }
   std::vector<std::string> parameters;
   for (const auto& [name, value] : spec.parameters) parameters.push_back(value);
   visit_system<T>(spec.system, parameters, [&](const auto& system) { check_regular(system, spec, file); });
+}
+
+// The bytes of one number in `scalar` at `digits` (MPFR: the number and its limbs).
+static double bytes_per_number(const std::string& scalar, int digits) {
+  if (scalar == "double") return sizeof(double);
+  if (scalar == "long double") return sizeof(long double);
+  if (scalar == "float128") return sizeof(quad);
+  const double limbs = std::ceil(digits * 3.3219280948873623 / 64) + 1;
+  return static_cast<double>(sizeof(mpfr_real)) + 8 * limbs;
+}
+
+void check_memory(const CaseSpec& spec, const std::string& file, const std::string& scalar, int digits,
+                  const std::string& purpose) {
+  if (!spec.formula || spec.dimension <= 2) return;
+  const double n = spec.dimension;
+  const double operations =
+      static_cast<double>(make_formula_system<long double, any_size>(*spec.formula).program->nodes.size());
+  const double needed = operations * (1 + 2 * n + 4 * n * n) * bytes_per_number(scalar, digits);
+  const double pages = static_cast<double>(sysconf(_SC_PHYS_PAGES));
+  const double page = static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  const double available = pages > 0 && page > 0 ? pages * page : 0;
+  if (available > 0 && needed > available) {
+    const auto gib = [](double bytes) { return three_digits(bytes / (1024.0 * 1024 * 1024)) + " GiB"; };
+    throw CaseError(file, "system.coordinates",
+                    "a system of " + std::to_string(spec.dimension) + " coordinates whose L takes " +
+                        std::to_string(static_cast<long>(operations)) + " operations needs about " + gib(needed) +
+                        " in " + scalar + purpose +
+                        " for vivv's dense second derivatives (each operation a jet of 1 + 2n + (2n)^2 numbers), "
+                        "more than this machine's " + gib(available) + " of memory");
+  }
 }
 
 }  // namespace vivv::case_reading

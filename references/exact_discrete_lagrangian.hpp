@@ -29,6 +29,7 @@ namespace vivv {
 
 template <class T, int n>
 struct ExactDiscreteLagrangianValue {
+  explicit ExactDiscreteLagrangianValue(int size) : p_begin(size), p_end(size), w_begin(size), w_end(size) {}
   T value;              // L_d^E(q_b, q_e; h)
   Vector<T, n> p_begin;  // p(0) = −∂L_d^E/∂q_b
   Vector<T, n> p_end;    // p(h) = ∂L_d^E/∂q_e
@@ -44,7 +45,7 @@ template <TapeRecordable System>
 class ExactDiscreteLagrangian {
  public:
   using T = typename System::Scalar;
-  static constexpr int n = System::dimension;
+  static constexpr int N = System::dimension;
 
   // `tolerance`: accuracy wanted for the solution (the flows run at step tolerance tolerance/1000);
   // `quadrature_nodes` per Taylor step, 0 for order/2 + 4.
@@ -63,25 +64,26 @@ class ExactDiscreteLagrangian {
   TaylorVariationalFlow<System>& variational_flow() { return variational_; }
 
   // L_d^E(q_b, q_e; h) and the end momenta; `guess`, if given, starts Newton at w0 = *guess.
-  ExactDiscreteLagrangianValue<T, n> operator()(const Vector<T, n>& q_begin,
-                                                const Vector<T, n>& q_end, const T& h,
-                                                const Vector<T, n>* guess = nullptr) {
+  ExactDiscreteLagrangianValue<T, N> operator()(const Vector<T, N>& q_begin,
+                                                const Vector<T, N>& q_end, const T& h,
+                                                const Vector<T, N>* guess = nullptr) {
     using std::abs;
     using std::max;
+    const int n = static_cast<int>(q_begin.size());
     if (!(h != 0)) throw std::invalid_argument("ExactDiscreteLagrangian: h must be nonzero");
-    ExactDiscreteLagrangianValue<T, n> result;
-    State<T, n> start;
+    ExactDiscreteLagrangianValue<T, N> result(n);
+    State<T, N> start;
     start.q = q_begin;
-    start.w = guess ? *guess : Vector<T, n>((q_end - q_begin) / h);
+    start.w = guess ? *guess : Vector<T, N>((q_end - q_begin) / h);
     // Newton shooting on w0.
     for (int iteration = 1; iteration <= max_iterations; ++iteration) {
-      FlowWithJacobian<T, n> shot = variational_.advance(start, h);
-      Vector<T, n> residual = shot.state.q - q_end;
-      Matrix<T, n, n> dq_dw0 = shot.jacobian.template topRightCorner<n, n>();
-      Vector<T, n> correction = dq_dw0.fullPivLu().solve(residual);
+      FlowWithJacobian<T, N> shot = variational_.advance(start, h);
+      Vector<T, N> residual = shot.state.q - q_end;
+      Matrix<T, N, N> dq_dw0 = shot.jacobian.topRightCorner(n, n);
+      Vector<T, N> correction = dq_dw0.fullPivLu().solve(residual);
       start.w -= correction;
       result.iterations = iteration;
-      result.residual = max_norm<T, n>(residual);
+      result.residual = max_norm<T, N>(residual);
       bool small = true;
       for (int i = 0; i < n; ++i)
         small = small && abs(correction[i]) <= tolerance_ * (1 + abs(start.w[i]));
@@ -100,13 +102,13 @@ class ExactDiscreteLagrangian {
       if (h > 0 ? b > h : b < h) b = h;
       result.value += integrate(rule_, a, b, [&](const T& t) {
         std::vector<T> y = TaylorTrajectory<T>::evaluate(step, T(t - a));
-        Point<T, n> q, w;
+        Coordinates<T, N> q = make_point<T, N>(n), w = make_point<T, N>(n);
         for (int i = 0; i < n; ++i) q[i] = y[i], w[i] = y[n + i];
         return T(system_.lagrangian(q, w));
       });
       if (b == h) break;
     }
-    State<T, n> end = TaylorFlow<System>::state_of(solution.state_at(h));
+    State<T, N> end = TaylorFlow<System>::state_of(solution.state_at(h));
     result.w_begin = start.w;
     result.w_end = end.w;
     result.p_begin = momentum(system_, q_begin, start.w);

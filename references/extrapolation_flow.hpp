@@ -415,8 +415,9 @@ ExtrapolationFlowResult<typename System::Scalar, System::dimension> extrapolatio
     const typename System::Scalar& t, const typename System::Scalar& tolerance,
     const ExtrapolationOptions<typename System::Scalar>& options = {}) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
-  using Y = Vector<T, 2 * n>;
+  constexpr int N = System::dimension;
+  const int n = static_cast<int>(start.q.size());
+  using Y = Vector<T, twice(N)>;
   if (options.local_tolerance == 0 && !(tolerance >= minimum_flow_tolerance<T>())) {
     throw std::invalid_argument("extrapolation_flow: tolerance " + to_decimal<T>(tolerance) +
                                 " is below 10⁸ ulps of " + scalar_name<T>() + " (" +
@@ -425,22 +426,22 @@ ExtrapolationFlowResult<typename System::Scalar, System::dimension> extrapolatio
   }
   const T local_tolerance =
       options.local_tolerance != 0 ? options.local_tolerance : local_tolerance_for(tolerance);
-  auto euler_lagrange_field = [&system](const Y& y) {
-    Vector<T, n> q = y.template head<n>(), w = y.template tail<n>();
-    Vector<T, n> acceleration = euler_lagrange_acceleration(system, q, w);  // may throw
-    Y derivative;
-    derivative.template head<n>() = w;
-    derivative.template tail<n>() = acceleration;
+  auto euler_lagrange_field = [&system, n](const Y& y) {
+    Vector<T, N> q = y.head(n), w = y.tail(n);
+    Vector<T, N> acceleration = euler_lagrange_acceleration(system, q, w);  // may throw
+    Y derivative(2 * n);
+    derivative.head(n) = w;
+    derivative.tail(n) = acceleration;
     return derivative;
   };
-  Y y0;
-  y0.template head<n>() = start.q;
-  y0.template tail<n>() = start.w;
+  Y y0(2 * n);
+  y0.head(n) = start.q;
+  y0.tail(n) = start.w;
   auto solution =
-      gragg_bulirsch_stoer<T, 2 * n>(euler_lagrange_field, y0, t, local_tolerance, options);
-  ExtrapolationFlowResult<T, n> result;
-  result.state.q = solution.y.template head<n>();
-  result.state.w = solution.y.template tail<n>();
+      gragg_bulirsch_stoer<T, twice(N)>(euler_lagrange_field, y0, t, local_tolerance, options);
+  ExtrapolationFlowResult<T, N> result;
+  result.state.q = solution.y.head(n);
+  result.state.w = solution.y.tail(n);
   result.report = solution.report;
   return result;
 }

@@ -42,15 +42,16 @@ std::vector<T> difference_coefficients(const PowerSeries<T>& discrete, const Pow
 // q(h) = Σ_k q_k h^k, its first `length` coefficients, of the Euler–Lagrange solution through
 // (q0, w0) (Taylor-mode AD of the system's L, core/lagrangian/taylor_curve.hpp).
 template <LagrangianSystem System>
-Point<PowerSeries<typename System::Scalar>, System::dimension> solution_series(
+Coordinates<PowerSeries<typename System::Scalar>, System::dimension> solution_series(
     const System& system, const VectorOf<System>& q0, const VectorOf<System>& w0, int length) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
+  constexpr int N = System::dimension;
+  const int n = static_cast<int>(q0.size());
   const Tape<T> tape = euler_lagrange_tape(system);
   std::vector<T> x0(n), v0(n);
   for (int i = 0; i < n; ++i) x0[i] = q0[i], v0[i] = w0[i];
   const auto solution = solution_taylor_coefficients<T, T>(tape, x0, v0, length);
-  Point<PowerSeries<T>, n> q;
+  Coordinates<PowerSeries<T>, N> q = make_point<PowerSeries<T>, N>(n);
   for (int i = 0; i < n; ++i)
     q[i] = PowerSeries<T>::from(std::vector<T>(solution[i].begin(), solution[i].begin() + length));
   return q;
@@ -74,11 +75,12 @@ std::vector<typename System::Scalar> expression_error_expansion(
   using T = typename System::Scalar;
   using P = PowerSeries<T>;
   using K = KnownSeries<T>;
-  constexpr int n = System::dimension;
+  constexpr int N = System::dimension;
+  const int n = static_cast<int>(q0.size());
   for (int length = terms + 4; length <= 4 * terms + 16; length *= 2) {
-    const Point<P, n> q = solution_series(system, q0, w0, length);
-    std::array<K, 2 * n + 1> x;
-    Point<P, n> w;
+    const Coordinates<P, N> q = solution_series(system, q0, w0, length);
+    Coordinates<K, plus(twice(N), 1)> x = make_point<K, plus(twice(N), 1)>(2 * n + 1);
+    Coordinates<P, N> w = make_point<P, N>(n);
     for (int i = 0; i < n; ++i) {
       w[i] = q[i].derivative();
       x[i] = K(P(q0[i], length), length);
@@ -111,10 +113,11 @@ std::vector<typename System::Scalar> lagrangian_error_expansion(
     std::vector<typename System::Scalar>* sizes = nullptr) {
   using T = typename System::Scalar;
   using P = PowerSeries<T>;
-  constexpr int n = System::dimension;
+  constexpr int N = System::dimension;
+  const int n = static_cast<int>(q0.size());
   // q(h), q'(h), the constant q(0), and the difference quotient (q(h) − q(0))/h.
-  const Point<P, n> q = solution_series(system, q0, w0, terms);
-  Point<P, n> w, q_begin, quotient;
+  const Coordinates<P, N> q = solution_series(system, q0, w0, terms);
+  Coordinates<P, N> w = make_point<P, N>(n), q_begin = w, quotient = w;
   for (int i = 0; i < n; ++i) {
     w[i] = q[i].derivative();
     q_begin[i] = P(q0[i], terms);
@@ -126,7 +129,7 @@ std::vector<typename System::Scalar> lagrangian_error_expansion(
   for (int k = 1; k < terms; ++k) action[k] = along[k - 1] / k;
   // L_d, rule by rule from its formula.
   auto on_segment = [&](const T& fraction) {
-    Point<P, n> point;
+    Coordinates<P, N> point = make_point<P, N>(n);
     for (int i = 0; i < n; ++i) point[i] = (1 - fraction) * q_begin[i] + fraction * q[i];
     return system.lagrangian(point, quotient);
   };

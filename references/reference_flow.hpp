@@ -28,7 +28,7 @@
 namespace vivv {
 
 // The closed-form flow of System, where one is known: a specialization with
-//   static State<T, n> advance(const System&, const State<T, n>& start, const T& t);
+//   static State<T, N> advance(const System&, const State<T, N>& start, const T& t);
 //   static std::string method();   // what the closed form is, for the report
 // makes ReferenceFlow<System> use it, cross-checked against the Taylor flow (estimate_error).
 // Without one (the primary template stays undefined) the reference is extrapolation.
@@ -76,10 +76,10 @@ T closed_form_tolerance() {
 }
 
 // Whether |a_i − b_i| ≤ tol (1 + |b_i|) for every component of q and w.
-template <class T, int n>
-bool within_tolerance(const State<T, n>& a, const State<T, n>& b, const T& tol) {
+template <class T, int N>
+bool within_tolerance(const State<T, N>& a, const State<T, N>& b, const T& tol) {
   using std::abs;
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < static_cast<int>(a.q.size()); ++i) {
     if (!(abs(a.q[i] - b.q[i]) <= tol * (1 + abs(b.q[i])))) return false;
     if (!(abs(a.w[i] - b.w[i]) <= tol * (1 + abs(b.w[i])))) return false;
   }
@@ -90,7 +90,7 @@ template <LagrangianSystem System>
 class ReferenceFlow {
  public:
   using T = typename System::Scalar;
-  static constexpr int n = System::dimension;
+  static constexpr int N = System::dimension;
   static constexpr bool closed_form = has_closed_form_v<System>;
 
   // `tolerance`: the global tolerance of the extrapolation flow, raised to
@@ -110,7 +110,7 @@ class ReferenceFlow {
   const System& system() const { return system_; }
 
   // F_t(start), the exact flow (t may be negative).
-  State<T, n> advance(const State<T, n>& start, const T& t) const {
+  State<T, N> advance(const State<T, N>& start, const T& t) const {
     if constexpr (closed_form) {
       return ClosedFormFlow<System>::advance(system_, start, t);
     } else {
@@ -123,17 +123,17 @@ class ReferenceFlow {
   T tolerance() const { return effective_tolerance_; }
 
   // ‖advance(start, t) − F̃_t(start)‖_max for the independent, tighter F̃ of cross_check().
-  T estimate_error(const State<T, n>& start, const T& t) const {
+  T estimate_error(const State<T, N>& start, const T& t) const {
     if constexpr (closed_form) {
       TaylorFlow<System> check(system_, check_local_tolerance());
       check.integrator().on_progress = progress_;
-      return state_distance<T, n>(advance(start, t), check.advance(start, t));
+      return state_distance<T, N>(advance(start, t), check.advance(start, t));
     } else {
       ExtrapolationOptions<T> options;
       options.local_tolerance = check_local_tolerance();
-      State<T, n> check =
+      State<T, N> check =
           extrapolation_flow(system_, start, t, effective_tolerance_, options).state;
-      return state_distance<T, n>(advance(start, t), check);
+      return state_distance<T, N>(advance(start, t), check);
     }
   }
 

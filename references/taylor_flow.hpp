@@ -274,7 +274,7 @@ template <TapeRecordable System>
 class TaylorFlow {
  public:
   using T = typename System::Scalar;
-  static constexpr int n = System::dimension;
+  static constexpr int N = System::dimension;
 
   // `tolerance`: the Jorba–Zou step tolerance (local error per step about tolerance·max(1, |y|)).
   TaylorFlow(const System& system, const T& tolerance)
@@ -287,19 +287,19 @@ class TaylorFlow {
   TaylorIntegrator<T>& integrator() { return integrator_; }
 
   // F_t(start), ending exactly at t (t may be negative).
-  State<T, n> advance(const State<T, n>& start, const T& t) {
+  State<T, N> advance(const State<T, N>& start, const T& t) {
     return state_of(integrator_.advance(components(start), t));
   }
 
   // The dense trajectory from `start` covering [0, t_end] (or [t_end, 0]).
-  TaylorTrajectory<T> trajectory(const State<T, n>& start, const T& t_end) {
+  TaylorTrajectory<T> trajectory(const State<T, N>& start, const T& t_end) {
     TaylorTrajectory<T> result(components(start), t_end >= 0 ? 1 : -1);
     integrator_.extend(result, t_end);
     return result;
   }
 
   // F_t(start) for every t of `times` (any order, either sign) from one trajectory per direction.
-  std::vector<State<T, n>> advance_many(const State<T, n>& start, const std::vector<T>& times) {
+  std::vector<State<T, N>> advance_many(const State<T, N>& start, const std::vector<T>& times) {
     T latest = 0, earliest = 0;
     for (const T& t : times) {
       if (t > latest) latest = t;
@@ -308,7 +308,7 @@ class TaylorFlow {
     TaylorTrajectory<T> forward = trajectory(start, latest);
     TaylorTrajectory<T> backward(components(start), -1);
     if (earliest < 0) integrator_.extend(backward, earliest);
-    std::vector<State<T, n>> states;
+    std::vector<State<T, N>> states;
     states.reserve(times.size());
     for (const T& t : times)
       states.push_back(state_of(t >= 0 ? forward.state_at(t) : backward.state_at(t)));
@@ -316,14 +316,16 @@ class TaylorFlow {
   }
 
   // y = (q, w) as the integrator's components.
-  static std::vector<T> components(const State<T, n>& v) {
-    std::vector<T> y(2 * n);
-    for (int i = 0; i < n; ++i) y[i] = v.q[i], y[n + i] = v.w[i];
+  static std::vector<T> components(const State<T, N>& v) {
+    const int size = static_cast<int>(v.q.size());
+    std::vector<T> y(2 * size);
+    for (int i = 0; i < size; ++i) y[i] = v.q[i], y[size + i] = v.w[i];
     return y;
   }
-  static State<T, n> state_of(const std::vector<T>& y) {
-    State<T, n> v;
-    for (int i = 0; i < n; ++i) v.q[i] = y[i], v.w[i] = y[n + i];
+  static State<T, N> state_of(const std::vector<T>& y) {
+    const int size = static_cast<int>(y.size()) / 2;
+    State<T, N> v{Vector<T, N>(size), Vector<T, N>(size)};
+    for (int i = 0; i < size; ++i) v.q[i] = y[i], v.w[i] = y[size + i];
     return v;
   }
 

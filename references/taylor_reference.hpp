@@ -39,7 +39,7 @@ template <TapeRecordable System>
 class TaylorReference {
  public:
   using T = typename System::Scalar;
-  static constexpr int n = System::dimension;
+  static constexpr int N = System::dimension;
   static constexpr bool closed_form = false;
 
   // `tolerance`: the global accuracy wanted, raised to floor() if below it.
@@ -67,17 +67,17 @@ class TaylorReference {
   int order() const { return shared_->flow.order(); }
 
   // F_t(start) from the dense trajectory of `start` (t of either sign).
-  State<T, n> advance(const State<T, n>& start, const T& t) const {
+  State<T, N> advance(const State<T, N>& start, const T& t) const {
     std::lock_guard<std::mutex> lock(shared_->mutex);
     return TaylorFlow<System>::state_of(entry(start).state_at(t, shared_->flow));
   }
 
   // F_t(start) for every t of `times`, from the same cached trajectory.
-  std::vector<State<T, n>> advance_many(const State<T, n>& start,
+  std::vector<State<T, N>> advance_many(const State<T, N>& start,
                                         const std::vector<T>& times) const {
     std::lock_guard<std::mutex> lock(shared_->mutex);
     Cached& cached = entry(start);
-    std::vector<State<T, n>> states;
+    std::vector<State<T, N>> states;
     states.reserve(times.size());
     for (const T& t : times)
       states.push_back(TaylorFlow<System>::state_of(cached.state_at(t, shared_->flow)));
@@ -86,13 +86,13 @@ class TaylorReference {
 
   // ‖advance(start, t) − F̃_t(start)‖_max with F̃ an independent Taylor run (higher order, other
   // steps) at step tolerance check_step_tolerance().
-  T estimate_error(const State<T, n>& start, const T& t) const {
+  T estimate_error(const State<T, N>& start, const T& t) const {
     TaylorFlow<System> check(system_, check_step_tolerance());
     {
       std::lock_guard<std::mutex> lock(shared_->mutex);
       check.integrator().on_progress = shared_->flow.integrator().on_progress;
     }
-    return state_distance<T, n>(advance(start, t), check.advance(start, t));
+    return state_distance<T, N>(advance(start, t), check.advance(start, t));
   }
 
   // The global accuracy the check itself promises, by this flow's own rule
@@ -138,7 +138,7 @@ class TaylorReference {
  private:
   // The dense trajectories of one start, forward and backward, extended on demand.
   struct Cached {
-    State<T, n> start;
+    State<T, N> start;
     TaylorTrajectory<T> forward, backward;
     std::vector<T> state_at(const T& t, TaylorFlow<System>& flow) {
       TaylorTrajectory<T>& trajectory = t >= 0 ? forward : backward;
@@ -156,7 +156,7 @@ class TaylorReference {
   };
 
   // The cache entry of `start` (the eight most recent starts are kept).
-  Cached& entry(const State<T, n>& start) const {
+  Cached& entry(const State<T, N>& start) const {
     std::list<Cached>& cache = shared_->cache;
     for (auto it = cache.begin(); it != cache.end(); ++it) {
       if (it->start.q == start.q && it->start.w == start.w) {

@@ -20,40 +20,45 @@ namespace vivv {
 // F_t(v) and DF_t(v), rows and columns ordered (q_1..q_n, w_1..w_n).
 template <class T, int n>
 struct FlowWithJacobian {
+  explicit FlowWithJacobian(int size)
+      : state{Vector<T, n>(size), Vector<T, n>(size)}, jacobian(2 * size, 2 * size) {}
   State<T, n> state;
-  Matrix<T, 2 * n, 2 * n> jacobian;
+  Matrix<T, twice(n), twice(n)> jacobian;
 };
 
 template <TapeRecordable System>
 class TaylorVariationalFlow {
  public:
   using T = typename System::Scalar;
-  static constexpr int n = System::dimension;
-  static constexpr int columns = 2 * n;
-  static constexpr int extended = n * (1 + columns);  // dimension of (q, δq¹ … δq^{2n})
+  static constexpr int N = System::dimension;
 
   // Step tolerance as for TaylorFlow; the steps also resolve Φ.
   TaylorVariationalFlow(const System& system, const T& tolerance)
-      : integrator_(variational_tape(euler_lagrange_tape(system)), tolerance) {}
+      : n(dimension_of(system)), columns(2 * n), extended(n * (1 + columns)),
+        integrator_(variational_tape(euler_lagrange_tape(system)), tolerance) {}
+
+  const int n;         // coordinates
+  const int columns;   // 2n
+  const int extended;  // dimension of (q, δq¹ … δq^{2n}): n (1 + 2n)
 
   int order() const { return integrator_.order(); }
   TaylorReport report() const { return integrator_.report(); }
   TaylorIntegrator<T>& integrator() { return integrator_; }
 
   // (F_t(start), DF_t(start)), ending exactly at t.
-  FlowWithJacobian<T, n> advance(const State<T, n>& start, const T& t) {
+  FlowWithJacobian<T, N> advance(const State<T, N>& start, const T& t) {
     return split(integrator_.advance(components(start), t));
   }
 
   // The dense trajectory of (y, Φ) from `start` covering [0, t_end].
-  TaylorTrajectory<T> trajectory(const State<T, n>& start, const T& t_end) {
+  TaylorTrajectory<T> trajectory(const State<T, N>& start, const T& t_end) {
     TaylorTrajectory<T> result(components(start), t_end >= 0 ? 1 : -1);
     integrator_.extend(result, t_end);
     return result;
   }
 
   // (q, δq¹…δq^{2n}, w, δw¹…δw^{2n}) with Φ(0) = I: δq^j = e_j (j < n), δw^j = e_{j−n} (j ≥ n).
-  static std::vector<T> components(const State<T, n>& v) {
+  std::vector<T> components(const State<T, N>& v) const {
     std::vector<T> y(2 * extended, T(0));
     for (int i = 0; i < n; ++i) {
       y[i] = v.q[i];
@@ -65,8 +70,8 @@ class TaylorVariationalFlow {
   }
 
   // The state and Jacobian held in the components y.
-  static FlowWithJacobian<T, n> split(const std::vector<T>& y) {
-    FlowWithJacobian<T, n> result;
+  FlowWithJacobian<T, N> split(const std::vector<T>& y) const {
+    FlowWithJacobian<T, N> result(n);
     for (int i = 0; i < n; ++i) {
       result.state.q[i] = y[i];
       result.state.w[i] = y[extended + i];

@@ -22,6 +22,7 @@
 #include <cmath>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include "core/numerics/scalar.hpp"
 
@@ -52,12 +53,15 @@ struct Jet {
     clear_derivatives();
   }
 
-  // The independent variable number `index` at `at`.
-  static Jet variable(const T& at, int index) {
+  // The independent variable number `index` at `at` (of `size` variables: N, for a fixed jet).
+  static Jet variable(const T& at, int index, int size = N) {
+    (void)size;
     Jet x(at);
     x.gradient[index] = 1;
     return x;
   }
+  // A fixed jet always has its N derivatives.
+  void ensure_size(int) {}
 
   // Where ∂²/∂x_i∂x_j is kept: with Split, i < s ≤ j (or the mirror, j < s ≤ i).
   static constexpr int index(int i, int j) {
@@ -184,6 +188,162 @@ struct Jet {
     return r;
   }
 };
+
+// A jet over a number of variables known at run time (a system of any_size coordinates): the
+// gradient and Hessian on the heap, empty for a constant (every derivative 0), sized by the
+// first variable an operation meets. It keeps the whole Hessian whatever Split asks: Split only
+// saves work, and the entries a split jet keeps are the full Hessian's. The arithmetic is the
+// fixed jet's, operation for operation, so both give the same numbers.
+template <class T, int Order, int Split>
+struct Jet<T, any_size, Order, Split> {
+  static_assert(Order == 1 || Order == 2, "Jet: derivatives of order 1 or 2");
+  T value = 0;
+  std::vector<T> gradient;  // empty: a constant
+  std::vector<T> hessian;   // Order 2: size() × size(), row-major and symmetric; empty: a constant
+
+  Jet() = default;
+  Jet(const T& constant) : value(constant) {}  // NOLINT: constants promote
+  template <class I, std::enable_if_t<std::is_integral_v<I>, int> = 0>
+  Jet(I constant) : value(constant) {}  // NOLINT
+  template <class F, std::enable_if_t<std::is_floating_point_v<F> && !std::is_same_v<F, T>, int> = 0>
+  Jet(F constant) : value(constant) {}  // NOLINT
+
+  int size() const { return static_cast<int>(gradient.size()); }
+  bool is_constant() const { return gradient.empty(); }
+
+  static Jet variable(const T& at, int index, int size) {
+    Jet x(at);
+    x.ensure_size(size);
+    x.gradient[index] = 1;
+    return x;
+  }
+  // A constant given its `size` derivatives (zeros), so that they can be read.
+  void ensure_size(int size) {
+    if (!gradient.empty()) return;
+    gradient.assign(size, T(0));
+    if constexpr (Order == 2) hessian.assign(static_cast<std::size_t>(size) * size, T(0));
+  }
+
+  const T& second(int i, int j) const { return hessian[static_cast<std::size_t>(i) * size() + j]; }
+
+  template <class F>
+  void for_each_second(F&& f) {
+    const int n = size();
+    for (int i = 0; i < n; ++i)
+      for (int j = i; j < n; ++j) {
+        T& h = hessian[static_cast<std::size_t>(i) * n + j];
+        f(h, i, j);
+        if (j != i) hessian[static_cast<std::size_t>(j) * n + i] = h;
+      }
+  }
+
+  Jet& apply_chain(const T& f0, const T& f1, const T& f2) {
+    if (!is_constant()) {
+      if constexpr (Order == 2) {
+        T scratch;
+        for_each_second([&](T& h, int i, int j) {
+          h *= f1;
+          scratch = gradient[i];
+          scratch *= gradient[j];
+          scratch *= f2;
+          h += scratch;
+        });
+      } else {
+        (void)f2;
+      }
+      for (auto& g : gradient) g *= f1;
+    }
+    value = f0;
+    return *this;
+  }
+  Jet chain(const T& f0, const T& f1, const T& f2) const {
+    Jet r = *this;
+    r.apply_chain(f0, f1, f2);
+    return r;
+  }
+
+  Jet& operator+=(const Jet& b) {
+    value += b.value;
+    if (b.is_constant()) return *this;
+    if (is_constant()) {
+      gradient = b.gradient, hessian = b.hessian;
+      return *this;
+    }
+    for (std::size_t i = 0; i < gradient.size(); ++i) gradient[i] += b.gradient[i];
+    for (std::size_t i = 0; i < hessian.size(); ++i) hessian[i] += b.hessian[i];
+    return *this;
+  }
+  Jet& operator-=(const Jet& b) {
+    value -= b.value;
+    if (b.is_constant()) return *this;
+    ensure_size(b.size());
+    for (std::size_t i = 0; i < gradient.size(); ++i) gradient[i] -= b.gradient[i];
+    for (std::size_t i = 0; i < hessian.size(); ++i) hessian[i] -= b.hessian[i];
+    return *this;
+  }
+  Jet& operator*=(const Jet& b) {
+    if (&b == this) {
+      const Jet copy = b;
+      return *this *= copy;
+    }
+    if (b.is_constant()) return *this *= b.value;
+    if (is_constant()) {
+      const T a = value;
+      *this = b;
+      return *this *= a;
+    }
+    T scratch, term;
+    if constexpr (Order == 2)
+      for_each_second([&](T& h, int i, int j) {
+        h *= b.value;
+        scratch = value;
+        scratch *= b.second(i, j);
+        h += scratch;
+        scratch = gradient[i];
+        scratch *= b.gradient[j];
+        term = b.gradient[i];
+        term *= gradient[j];
+        scratch += term;
+        h += scratch;
+      });
+    for (std::size_t i = 0; i < gradient.size(); ++i) {
+      gradient[i] *= b.value;
+      scratch = value;
+      scratch *= b.gradient[i];
+      gradient[i] += scratch;
+    }
+    value *= b.value;
+    return *this;
+  }
+  Jet& operator/=(const Jet& b) {
+    T inverse = 1 / b.value;
+    return *this *= b.chain(inverse, -inverse * inverse, 2 * inverse * inverse * inverse);
+  }
+  Jet& operator*=(const T& c) {
+    value *= c;
+    for (auto& g : gradient) g *= c;
+    for (auto& h : hessian) h *= c;
+    return *this;
+  }
+  Jet& operator/=(const T& c) {
+    value /= c;
+    for (auto& g : gradient) g /= c;
+    for (auto& h : hessian) h /= c;
+    return *this;
+  }
+  Jet operator-() const {
+    Jet r = *this;
+    r *= T(-1);
+    return r;
+  }
+};
+
+// `jet` with its `size` derivatives readable: a dynamic jet that came out constant gets zeros.
+template <class J>
+J with_size(J jet, int size) {
+  jet.ensure_size(size);
+  return jet;
+}
 
 template <class T>
 struct is_jet : std::false_type {};

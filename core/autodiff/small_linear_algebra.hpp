@@ -6,13 +6,45 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include "core/autodiff/jet.hpp"
 
 namespace vivv {
 
+template <class S, int n>
+struct SmallVectorType {
+  using type = std::array<S, n>;
+};
+template <class S>
+struct SmallVectorType<S, any_size> {
+  using type = std::vector<S>;
+};
+// n numbers: std::array for a fixed n, std::vector for any_size (the same as a Point).
+template <class S, int n>
+using SmallVector = typename SmallVectorType<S, n>::type;
+
 template <class S, int rows, int cols>
-using SmallMatrix = std::array<std::array<S, cols>, rows>;
+using SmallMatrix = SmallVector<SmallVector<S, cols>, rows>;
+
+// A SmallVector of `size` entries and a SmallMatrix of rows × cols (fixed sizes: their own).
+template <class S, int n>
+SmallVector<S, n> make_small_vector(int size) {
+  if constexpr (n == any_size)
+    return SmallVector<S, n>(static_cast<std::size_t>(size));
+  else
+    return (void)size, SmallVector<S, n>{};
+}
+template <class S, int rows, int cols>
+SmallMatrix<S, rows, cols> make_small_matrix(int r, int c) {
+  if constexpr (rows == any_size) {
+    return SmallMatrix<S, rows, cols>(static_cast<std::size_t>(r), make_small_vector<S, cols>(c));
+  } else {
+    SmallMatrix<S, rows, cols> m{};
+    for (auto& row : m) row = make_small_vector<S, cols>(c);
+    return m;
+  }
+}
 
 // |x| of the value part, for pivoting: x itself for a scalar, x.value for a jet.
 template <class S>
@@ -27,8 +59,9 @@ auto magnitude(const S& x) {
 
 // x solving A x = b by Gaussian elimination with partial pivoting.
 // Throws std::domain_error when A is singular at working precision.
-template <class S, int n>
-std::array<S, n> solve(SmallMatrix<S, n, n> a, std::array<S, n> b) {
+template <class S, int N>
+SmallVector<S, N> solve(SmallMatrix<S, N, N> a, SmallVector<S, N> b) {
+  const int n = static_cast<int>(b.size());
   for (int column = 0; column < n; ++column) {
     int pivot = column;
     for (int row = column + 1; row < n; ++row)
@@ -42,7 +75,7 @@ std::array<S, n> solve(SmallMatrix<S, n, n> a, std::array<S, n> b) {
       b[row] -= factor * b[column];
     }
   }
-  std::array<S, n> x;
+  SmallVector<S, N> x = make_small_vector<S, N>(n);
   for (int row = n - 1; row >= 0; --row) {
     S sum = b[row];
     for (int k = row + 1; k < n; ++k) sum -= a[row][k] * x[k];
@@ -54,9 +87,10 @@ std::array<S, n> solve(SmallMatrix<S, n, n> a, std::array<S, n> b) {
 // Aᵀ.
 template <class S, int rows, int cols>
 SmallMatrix<S, cols, rows> transpose(const SmallMatrix<S, rows, cols>& a) {
-  SmallMatrix<S, cols, rows> t;
-  for (int i = 0; i < rows; ++i)
-    for (int j = 0; j < cols; ++j) t[j][i] = a[i][j];
+  const int r = static_cast<int>(a.size()), c = r ? static_cast<int>(a[0].size()) : 0;
+  SmallMatrix<S, cols, rows> t = make_small_matrix<S, cols, rows>(c, r);
+  for (int i = 0; i < r; ++i)
+    for (int j = 0; j < c; ++j) t[j][i] = a[i][j];
   return t;
 }
 
@@ -64,23 +98,26 @@ SmallMatrix<S, cols, rows> transpose(const SmallMatrix<S, rows, cols>& a) {
 template <class S, int rows, int inner, int cols>
 SmallMatrix<S, rows, cols> multiply(const SmallMatrix<S, rows, inner>& a,
                                     const SmallMatrix<S, inner, cols>& b) {
-  SmallMatrix<S, rows, cols> c;
-  for (int i = 0; i < rows; ++i)
-    for (int j = 0; j < cols; ++j) {
-      c[i][j] = S(0);
-      for (int k = 0; k < inner; ++k) c[i][j] += a[i][k] * b[k][j];
+  const int r = static_cast<int>(a.size()), m = static_cast<int>(b.size()),
+            c = m ? static_cast<int>(b[0].size()) : 0;
+  SmallMatrix<S, rows, cols> product = make_small_matrix<S, rows, cols>(r, c);
+  for (int i = 0; i < r; ++i)
+    for (int j = 0; j < c; ++j) {
+      product[i][j] = S(0);
+      for (int k = 0; k < m; ++k) product[i][j] += a[i][k] * b[k][j];
     }
-  return c;
+  return product;
 }
 
 // A⁻¹ B, column by column.
-template <class S, int n, int cols>
-SmallMatrix<S, n, cols> solve_columns(const SmallMatrix<S, n, n>& a, const SmallMatrix<S, n, cols>& b) {
-  SmallMatrix<S, n, cols> x;
-  for (int j = 0; j < cols; ++j) {
-    std::array<S, n> column;
+template <class S, int N, int cols>
+SmallMatrix<S, N, cols> solve_columns(const SmallMatrix<S, N, N>& a, const SmallMatrix<S, N, cols>& b) {
+  const int n = static_cast<int>(b.size()), c = n ? static_cast<int>(b[0].size()) : 0;
+  SmallMatrix<S, N, cols> x = make_small_matrix<S, N, cols>(n, c);
+  for (int j = 0; j < c; ++j) {
+    SmallVector<S, N> column = make_small_vector<S, N>(n);
     for (int i = 0; i < n; ++i) column[i] = b[i][j];
-    auto solved = solve<S, n>(a, column);
+    auto solved = solve<S, N>(a, column);
     for (int i = 0; i < n; ++i) x[i][j] = solved[i];
   }
   return x;

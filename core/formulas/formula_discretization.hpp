@@ -29,7 +29,8 @@ std::shared_ptr<const Tape<typename System::Scalar>> record_discrete_lagrangian(
     const System& system, const FormulaNode& tree, const std::vector<std::pair<std::string, std::string>>& parameters) {
   using T = typename System::Scalar;
   using V = TapeScalar<T>;
-  constexpr int n = System::dimension;
+  constexpr int N = System::dimension;
+  const int n = dimension_of(system);
   TapeRecording<T> recording(2 * n + 1);
   FormulaScope<T, V> scope;
   FormulaValue<V> qb{{}, true, false}, qe{{}, true, false};
@@ -41,8 +42,8 @@ std::shared_ptr<const Tape<typename System::Scalar>> record_discrete_lagrangian(
   for (const auto& [name, value] : parameters)
     scope.names[name] = FormulaValue<V>::scalar(V(from_decimal<T>(value)), true);
   scope.dimension = n;
-  scope.lagrangian = [&system](const std::vector<V>& x, const std::vector<V>& v) {
-    Point<V, n> point, velocity;
+  scope.lagrangian = [&system, n](const std::vector<V>& x, const std::vector<V>& v) {
+    Coordinates<V, N> point = make_point<V, N>(n), velocity = make_point<V, N>(n);
     for (int i = 0; i < n; ++i) point[i] = x[i], velocity[i] = v[i];
     return V(system.lagrangian(point, velocity));
   };
@@ -58,12 +59,13 @@ std::shared_ptr<const Tape<typename System::Scalar>> record_discrete_lagrangian(
     const System& system, const PerScalar<DiscreteLagrangianRecorder>& recorder) {
   using T = typename System::Scalar;
   using V = TapeScalar<T>;
-  constexpr int n = System::dimension;
+  constexpr int N = System::dimension;
+  const int n = dimension_of(system);
   TapeRecording<T> recording(2 * n + 1);
   std::vector<V> qb, qe;
   for (int i = 0; i < n; ++i) qb.push_back(recording.input(i)), qe.push_back(recording.input(n + i));
-  auto lagrangian = [&system](const std::vector<V>& x, const std::vector<V>& v) {
-    Point<V, n> point, velocity;
+  auto lagrangian = [&system, n](const std::vector<V>& x, const std::vector<V>& v) {
+    Coordinates<V, N> point = make_point<V, N>(n), velocity = make_point<V, N>(n);
     for (int i = 0; i < n; ++i) point[i] = x[i], velocity[i] = v[i];
     return V(system.lagrangian(point, velocity));
   };

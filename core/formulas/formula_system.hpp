@@ -37,27 +37,32 @@ struct FormulaSystemDefinition {
   std::shared_ptr<const PerScalar<SystemRecorder>> recorded;
 };
 
+// n: the number of coordinates, fixed (1, 2) or any_size (then the definition's, at run time).
 template <class T, int n>
 struct FormulaSystem {
   using Scalar = T;
   static constexpr int dimension = n;
   std::shared_ptr<const Tape<T>> program;  // inputs q_1 … q_n, w_1 … w_n; one output, L
+  int coordinates = n;
+
+  int size() const { return coordinates; }
 
   // L(q, w): the recorded program run in S.
-  template <class S>
-  S lagrangian(const Point<S, n>& q, const Point<S, n>& w) const {
+  template <class P>
+  auto lagrangian(const P& q, const P& w) const {
+    using S = typename P::value_type;
     count_lagrangian_evaluation();
-    std::array<S, 2 * n> x;
-    for (int i = 0; i < n; ++i) x[i] = q[i], x[n + i] = w[i];
-    return program->evaluate_first(x.data());
+    Coordinates<S, twice(n)> x = make_point<S, twice(n)>(2 * coordinates);
+    for (int i = 0; i < coordinates; ++i) x[i] = q[i], x[coordinates + i] = w[i];
+    return S(program->evaluate_first(x.data()));
   }
 
   std::shared_ptr<const Tape<T>> symmetry;  // inputs q_1 … q_n; outputs ξ_1 … ξ_n; null: none declared
   bool has_symmetry() const { return symmetry != nullptr; }
-  Point<T, n> symmetry_generator(const Point<T, n>& q) const {
+  Coordinates<T, n> symmetry_generator(const Coordinates<T, n>& q) const {
     const std::vector<T> xi = symmetry->evaluate(std::vector<T>(q.begin(), q.end()));
-    Point<T, n> generator;
-    for (int i = 0; i < n; ++i) generator[i] = xi[i];
+    Coordinates<T, n> generator = make_point<T, n>(coordinates);
+    for (int i = 0; i < coordinates; ++i) generator[i] = xi[i];
     return generator;
   }
 };
@@ -78,12 +83,14 @@ FormulaScope<T, V> system_formula_scope(const FormulaSystemDefinition& definitio
 
 // Records the formula of `definition` (dimension n) in T. Throws FormulaError for
 // a formula that has no meaning (unknown names, vectors, non-constant exponents).
-template <class T, int n>
-FormulaSystem<T, n> make_formula_system(const FormulaSystemDefinition& definition) {
+template <class T, int N>
+FormulaSystem<T, N> make_formula_system(const FormulaSystemDefinition& definition) {
+  const int n = N == any_size ? static_cast<int>(definition.coordinates.size()) : N;
   TapeRecording<T> recording(2 * n);
   std::vector<TapeScalar<T>> q, w;
   for (int i = 0; i < n; ++i) q.push_back(recording.input(i)), w.push_back(recording.input(n + i));
-  FormulaSystem<T, n> system;
+  FormulaSystem<T, N> system;
+  system.coordinates = n;
   if (definition.recorded) {
     const TapeScalar<T> value = definition.recorded->template get<T>()(q, w, definition.parameters);
     system.program = std::make_shared<const Tape<T>>(recording.finish({value}));

@@ -37,7 +37,7 @@ template <class System>
 concept TapeRecordable =
     LagrangianSystem<System> &&
     requires(const System& system,
-             const Point<Jet<TapeScalar<typename System::Scalar>, 2 * System::dimension>,
+             const Coordinates<Jet<TapeScalar<typename System::Scalar>, twice(System::dimension)>,
                          System::dimension>& x) {
       { system.lagrangian(x, x) };
     };
@@ -47,15 +47,16 @@ template <TapeRecordable System>
 Tape<typename System::Scalar> euler_lagrange_tape(const System& system) {
   using T = typename System::Scalar;
   using S = TapeScalar<T>;
-  constexpr int n = System::dimension;
-  using J = Jet<S, 2 * n>;
+  constexpr int N = System::dimension;
+  const int n = dimension_of(system);
+  using J = Jet<S, twice(N)>;
   TapeRecording<T> recording(2 * n);
-  Point<J, n> q, w;
+  Coordinates<J, N> q = make_point<J, N>(n), w = make_point<J, N>(n);
   for (int i = 0; i < n; ++i) {
-    q[i] = J::variable(recording.input(i), i);
-    w[i] = J::variable(recording.input(n + i), n + i);
+    q[i] = J::variable(recording.input(i), i, 2 * n);
+    w[i] = J::variable(recording.input(n + i), n + i, 2 * n);
   }
-  J L = system.lagrangian(q, w);
+  const J L = with_size(J(system.lagrangian(q, w)), 2 * n);
   // M a = dL/dq − (d²L/dw dq) w, as an augmented n × (n + 1) matrix.
   std::vector<std::vector<S>> augmented(n, std::vector<S>(n + 1));
   for (int i = 0; i < n; ++i) {

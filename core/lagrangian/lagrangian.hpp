@@ -9,6 +9,7 @@
 #include <concepts>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "core/autodiff/jet.hpp"
 #include "core/numerics/scalar.hpp"
@@ -21,30 +22,65 @@ namespace vivv {
 inline thread_local long lagrangian_evaluations = 0;
 inline void count_lagrangian_evaluation() { ++lagrangian_evaluations; }
 
+// The arguments of L: std::array for a fixed dimension, std::vector for any_size.
+template <class S, int n>
+struct PointType {
+  using type = std::array<S, n>;
+};
+template <class S>
+struct PointType<S, any_size> {
+  using type = std::vector<S>;
+};
+template <class S, int n>
+using Coordinates = typename PointType<S, n>::type;
+// What a system of fixed dimension n writes its L for: `S lagrangian(const Point<S, n>& q, const
+// Point<S, n>& w)` (S deduced). A system of any_size takes any container P: `template <class P>
+// auto lagrangian(const P& q, const P& w)`, its scalar P::value_type.
 template <class S, int n>
 using Point = std::array<S, n>;
 
+// Coordinates of `size` components (the fixed ones: n), value-initialized.
+template <class S, int n>
+Coordinates<S, n> make_point(int size) {
+  if constexpr (n == any_size) {
+    return Coordinates<S, n>(static_cast<std::size_t>(size));
+  } else {
+    (void)size;
+    return Coordinates<S, n>{};
+  }
+}
+
 // The same coordinates as a Point (what L takes) and as a Vector (what the solvers take).
 template <class S, int n>
-Point<S, n> as_point(const Vector<S, n>& v) {
-  Point<S, n> p;
-  for (int i = 0; i < n; ++i) p[i] = v[i];
+Coordinates<S, n> as_point(const Vector<S, n>& v) {
+  Coordinates<S, n> p = make_point<S, n>(static_cast<int>(v.size()));
+  for (int i = 0; i < static_cast<int>(v.size()); ++i) p[i] = v[i];
   return p;
 }
 
 template <class S, int n>
-Vector<S, n> as_vector(const Point<S, n>& p) {
-  Vector<S, n> v;
-  for (int i = 0; i < n; ++i) v[i] = p[i];
+Vector<S, n> as_vector(const Coordinates<S, n>& p) {
+  const int size = static_cast<int>(p.size());
+  Vector<S, n> v(size);
+  for (int i = 0; i < size; ++i) v[i] = p[i];
   return v;
+}
+
+// A system's number of coordinates: its compile-time dimension, or (any_size) its own size().
+template <class System>
+int dimension_of(const System& system) {
+  if constexpr (System::dimension == any_size)
+    return system.size();
+  else
+    return (void)system, System::dimension;
 }
 
 // A Lagrangian system on Q = R^n with parameters in the scalar Scalar, whose
 // L can be evaluated in Scalar and in jets over it.
 template <class System>
 concept LagrangianSystem = requires(const System& system,
-                                    const Point<typename System::Scalar, System::dimension>& x,
-                                    const Point<Jet<typename System::Scalar, 2 * System::dimension>,
+                                    const Coordinates<typename System::Scalar, System::dimension>& x,
+                                    const Coordinates<Jet<typename System::Scalar, twice(System::dimension)>,
                                                 System::dimension>& jet_x) {
   typename System::Scalar;
   { System::dimension } -> std::convertible_to<int>;
@@ -65,6 +101,8 @@ struct SingularLagrangianError : std::runtime_error {
 // L and its first and second derivatives at (q, w).
 template <class T, int n>
 struct LagrangianDerivatives {
+  explicit LagrangianDerivatives(int size)
+      : dL_dq(size), dL_dw(size), d2L_dw2(size, size), d2L_dwdq(size, size) {}
   T value;
   Vector<T, n> dL_dq;
   Vector<T, n> dL_dw;
@@ -77,15 +115,16 @@ template <LagrangianSystem System>
 auto lagrangian_derivatives(const System& system,
                             const VectorOf<System>& q, const VectorOf<System>& w) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
-  using J = Jet<T, 2 * n>;
-  Point<J, n> jet_q, jet_w;
+  constexpr int N = System::dimension;
+  const int n = static_cast<int>(q.size());
+  using J = Jet<T, twice(N)>;
+  Coordinates<J, N> jet_q = make_point<J, N>(n), jet_w = make_point<J, N>(n);
   for (int i = 0; i < n; ++i) {
-    jet_q[i] = J::variable(q[i], i);
-    jet_w[i] = J::variable(w[i], n + i);
+    jet_q[i] = J::variable(q[i], i, 2 * n);
+    jet_w[i] = J::variable(w[i], n + i, 2 * n);
   }
-  J L = system.lagrangian(jet_q, jet_w);
-  LagrangianDerivatives<T, n> d;
+  const J L = with_size(J(system.lagrangian(jet_q, jet_w)), 2 * n);
+  LagrangianDerivatives<T, N> d(n);
   d.value = L.value;
   for (int i = 0; i < n; ++i) {
     d.dL_dq[i] = L.gradient[i];
@@ -105,13 +144,15 @@ auto lagrangian_derivatives(const System& system,
 template <int Order, LagrangianSystem System>
 auto lagrangian_in_velocity(const System& system,
                             const VectorOf<System>& q, const VectorOf<System>& w) {
-  using J = Jet<typename System::Scalar, System::dimension, Order>;
-  Point<J, System::dimension> jet_q, jet_w;
-  for (int i = 0; i < System::dimension; ++i) {
+  constexpr int N = System::dimension;
+  const int n = static_cast<int>(q.size());
+  using J = Jet<typename System::Scalar, N, Order>;
+  Coordinates<J, N> jet_q = make_point<J, N>(n), jet_w = make_point<J, N>(n);
+  for (int i = 0; i < n; ++i) {
     jet_q[i] = J(q[i]);
-    jet_w[i] = J::variable(w[i], i);
+    jet_w[i] = J::variable(w[i], i, n);
   }
-  return J(system.lagrangian(jet_q, jet_w));
+  return with_size(J(system.lagrangian(jet_q, jet_w)), n);
 }
 
 // Momentum p = FL(q, w) = dL/dw.
@@ -119,8 +160,8 @@ template <LagrangianSystem System>
 auto momentum(const System& system, const VectorOf<System>& q,
               const VectorOf<System>& w) {
   const auto L = lagrangian_in_velocity<1>(system, q, w);
-  VectorOf<System> p;
-  for (int i = 0; i < System::dimension; ++i) p[i] = L.gradient[i];
+  VectorOf<System> p(q.size());
+  for (int i = 0; i < static_cast<int>(q.size()); ++i) p[i] = L.gradient[i];
   return p;
 }
 
@@ -131,7 +172,7 @@ auto energy(const System& system, const VectorOf<System>& q,
   using T = typename System::Scalar;
   const auto L = lagrangian_in_velocity<1>(system, q, w);
   T energy = -L.value;
-  for (int i = 0; i < System::dimension; ++i) energy += L.gradient[i] * w[i];
+  for (int i = 0; i < static_cast<int>(q.size()); ++i) energy += L.gradient[i] * w[i];
   return energy;
 }
 
@@ -154,7 +195,7 @@ auto euler_lagrange_acceleration(const System& system,
   if (!(scale > 0) || !lu.isInvertible()) {
     throw SingularLagrangianError("the Lagrangian is not regular: d2L/dw2 is singular at q = " +
                                   to_decimal<T>(q[0]) + ", w = " + to_decimal<T>(w[0]) +
-                                  (System::dimension > 1 ? " (first components)" : ""));
+                                  (q.size() > 1 ? " (first components)" : ""));
   }
   Vector<T, System::dimension> rhs = d.dL_dq - d.d2L_dwdq * w;
   return Vector<T, System::dimension>(lu.solve(rhs));

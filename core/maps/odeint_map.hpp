@@ -8,8 +8,8 @@
 //   runge_kutta4                       (q, w): the classical Runge–Kutta method, order 4, not
 //                                      symplectic.
 // Each runs in the working precision T and, for the Jacobian, in first-order jets over (q, p).
-// The definitions (core/maps/odeint_map_impl.hpp) are compiled once per scalar, for 1 to 4
-// coordinates, in units harness/CMakeLists.txt generates.
+// The definitions (core/maps/odeint_map_impl.hpp) are compiled once per scalar, for 1 and 2
+// coordinates and for a size set at run time (any_size), in units harness/CMakeLists.txt generates.
 #pragma once
 
 #include <memory>

@@ -31,9 +31,10 @@ class OdeintMap final : public SeparableMap<OdeintMap<T, n>, T, n> {
 
   // One step of the stepper on (q, w) in scalar S, with force F in S.
   template <class S, class Force>
-  void advance(std::array<S, n>& q, std::array<S, n>& w, const S& h, const Force& force) const {
+  void advance(vivv::Coordinates<S, n>& q, vivv::Coordinates<S, n>& w, const S& h, const Force& force) const {
     namespace odeint = boost::numeric::odeint;
-    using Coordinates = std::array<S, n>;
+    using Coordinates = vivv::Coordinates<S, n>;
+    const int size = static_cast<int>(q.size());
     // q'' = M⁻¹ F(q), and its first-order forms.
     auto acceleration = [&](const Coordinates& x, const Coordinates&, Coordinates& a, const S&) {
       a = times(this->system().inverse_mass, force(x));
@@ -55,17 +56,17 @@ class OdeintMap final : public SeparableMap<OdeintMap<T, n>, T, n> {
         odeint::symplectic_rkn_sb3a_m4_mclachlan<Coordinates, Coordinates, S>().do_step(rates, state, S(0), h);
       q = state.first, w = times(this->system().inverse_mass, state.second);
     } else if (name == "runge_kutta4") {
-      using Phase = std::array<S, 2 * n>;
+      using Phase = vivv::Coordinates<S, twice(n)>;
       auto rate = [&](const Phase& y, Phase& dy, const S&) {
-        Coordinates x, a;
-        for (int i = 0; i < n; ++i) x[i] = y[i], dy[i] = y[n + i];
+        Coordinates x = q, a;
+        for (int i = 0; i < size; ++i) x[i] = y[i], dy[i] = y[size + i];
         a = times(this->system().inverse_mass, force(x));
-        for (int i = 0; i < n; ++i) dy[n + i] = a[i];
+        for (int i = 0; i < size; ++i) dy[size + i] = a[i];
       };
-      Phase y;
-      for (int i = 0; i < n; ++i) y[i] = q[i], y[n + i] = w[i];
+      Phase y = make_point<S, twice(n)>(2 * size);
+      for (int i = 0; i < size; ++i) y[i] = q[i], y[size + i] = w[i];
       odeint::runge_kutta4<Phase, S, Phase, S>().do_step(rate, y, S(0), h);
-      for (int i = 0; i < n; ++i) q[i] = y[i], w[i] = y[n + i];
+      for (int i = 0; i < size; ++i) q[i] = y[i], w[i] = y[size + i];
     } else {
       throw std::invalid_argument("unknown odeint stepper '" + name + "'");
     }

@@ -51,7 +51,7 @@ struct OneStepMap {
   // Φ_h(x) on (q, w).
   virtual State<T, n> step(const State<T, n>& x, const T& h) const = 0;
   // ∂(q', p')/∂(q, p) at x.
-  virtual Matrix<T, 2 * n, 2 * n> jacobian(const State<T, n>& x, const T& h) const = 0;
+  virtual Matrix<T, twice(n), twice(n)> jacobian(const State<T, n>& x, const T& h) const = 0;
   // The relative rounding of jacobian()'s entries: ε of T for a Jacobian computed exactly (jets,
   // the implicit function theorem, a program's own), larger for one by differences at a width
   // the map's precision allows (a double program: about ε^(2/3)). symplecticity's tolerance is
@@ -75,14 +75,15 @@ struct OneStepMap {
 
 // The Jacobian's scalar: a value and its gradient in the 2n variables (q, p).
 template <class T, int n>
-using PhaseJet = Jet<T, 2 * n, 1>;
+using PhaseJet = Jet<T, twice(n), 1>;
 
 // L(q, w) = ½ wᵀ M w − V(q): the mass matrix, its inverse and the force F(q) = −∇V(q).
 template <class T, int n>
 struct SeparableSystem {
   Matrix<T, n, n> mass, inverse_mass;
-  std::function<std::array<T, n>(const std::array<T, n>&)> force;
-  std::function<std::array<PhaseJet<T, n>, n>(const std::array<PhaseJet<T, n>, n>&)> force_jet;
+  std::function<Coordinates<T, n>(const Coordinates<T, n>&)> force;
+  std::function<Coordinates<PhaseJet<T, n>, n>(const Coordinates<PhaseJet<T, n>, n>&)> force_jet;
+  int size() const { return static_cast<int>(mass.rows()); }
 };
 
 // A one-step map on a separable system given by Derived::advance(q, w, h, force) in any scalar
@@ -95,26 +96,27 @@ class SeparableMap : public OneStepMap<T, n> {
   explicit SeparableMap(SeparableSystem<T, n> system) : system_(std::move(system)) {}
 
   State<T, n> step(const State<T, n>& x, const T& h) const override {
-    std::array<T, n> q, w;
-    for (int i = 0; i < n; ++i) q[i] = x.q[i], w[i] = x.w[i];
+    Coordinates<T, n> q = as_point<T, n>(x.q), w = as_point<T, n>(x.w);
     derived().advance(q, w, h, system_.force);
-    State<T, n> next;
-    for (int i = 0; i < n; ++i) next.q[i] = q[i], next.w[i] = w[i];
-    return next;
+    return State<T, n>{as_vector<T, n>(q), as_vector<T, n>(w)};
   }
 
   // Rows of the result: the gradients of q' and of p' = M w' over (q, p).
-  Matrix<T, 2 * n, 2 * n> jacobian(const State<T, n>& x, const T& h) const override {
+  Matrix<T, twice(n), twice(n)> jacobian(const State<T, n>& x, const T& h) const override {
     using J = PhaseJet<T, n>;
+    const int size = system_.size();
     const Vector<T, n> p = system_.mass * x.w;
-    std::array<J, n> q, momentum;
-    for (int i = 0; i < n; ++i) q[i] = J::variable(x.q[i], i), momentum[i] = J::variable(p[i], n + i);
-    std::array<J, n> w = times(system_.inverse_mass, momentum);
+    Coordinates<J, n> q = make_point<J, n>(size), momentum = make_point<J, n>(size);
+    for (int i = 0; i < size; ++i)
+      q[i] = J::variable(x.q[i], i, 2 * size), momentum[i] = J::variable(p[i], size + i, 2 * size);
+    Coordinates<J, n> w = times(system_.inverse_mass, momentum);
     derived().advance(q, w, J(h), system_.force_jet);
-    const std::array<J, n> p_next = times(system_.mass, w);
-    Matrix<T, 2 * n, 2 * n> jacobian;
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < 2 * n; ++j) jacobian(i, j) = q[i].gradient[j], jacobian(n + i, j) = p_next[i].gradient[j];
+    const Coordinates<J, n> p_next = times(system_.mass, w);
+    Matrix<T, twice(n), twice(n)> jacobian(2 * size, 2 * size);
+    for (int i = 0; i < size; ++i) {
+      const J q_i = with_size(q[i], 2 * size), p_i = with_size(p_next[i], 2 * size);
+      for (int j = 0; j < 2 * size; ++j) jacobian(i, j) = q_i.gradient[j], jacobian(size + i, j) = p_i.gradient[j];
+    }
     return jacobian;
   }
 
@@ -122,12 +124,14 @@ class SeparableMap : public OneStepMap<T, n> {
   const SeparableSystem<T, n>& system() const { return system_; }
 
   // A·v for a matrix in T and a vector in S.
-  template <class S>
-  static std::array<S, n> times(const Matrix<T, n, n>& a, const std::array<S, n>& v) {
-    std::array<S, n> r;
-    for (int i = 0; i < n; ++i) {
+  template <class P>
+  static P times(const Matrix<T, n, n>& a, const P& v) {
+    using S = typename P::value_type;
+    const int size = static_cast<int>(v.size());
+    P r = v;
+    for (int i = 0; i < size; ++i) {
       r[i] = S(0);
-      for (int j = 0; j < n; ++j) r[i] += S(a(i, j)) * v[j];
+      for (int j = 0; j < size; ++j) r[i] += S(a(i, j)) * v[j];
     }
     return r;
   }
@@ -138,17 +142,19 @@ class SeparableMap : public OneStepMap<T, n> {
 };
 
 // F(q) = ∂L/∂q(q, 0) in scalar S (T or a jet over it), by one more first-order jet.
-template <LagrangianSystem System, class S>
-std::array<S, System::dimension> force_at(const System& system, const std::array<S, System::dimension>& q) {
-  constexpr int n = System::dimension;
-  using J = Jet<S, n, 1>;
-  Point<J, n> jet_q, jet_w;
+template <LagrangianSystem System, class P>
+P force_at(const System& system, const P& q) {
+  using S = typename P::value_type;
+  constexpr int N = System::dimension;
+  const int n = static_cast<int>(q.size());
+  using J = Jet<S, N, 1>;
+  Coordinates<J, N> jet_q = make_point<J, N>(n), jet_w = make_point<J, N>(n);
   for (int i = 0; i < n; ++i) {
-    jet_q[i] = J::variable(q[i], i);
+    jet_q[i] = J::variable(q[i], i, n);
     jet_w[i] = J(S(0));
   }
-  const J L = system.lagrangian(jet_q, jet_w);
-  std::array<S, n> force;
+  const J L = with_size(J(system.lagrangian(jet_q, jet_w)), n);
+  P force = q;
   for (int i = 0; i < n; ++i) force[i] = L.gradient[i];
   return force;
 }
@@ -179,13 +185,13 @@ std::optional<SeparabilityDefect<typename System::Scalar, System::dimension>> se
                           const std::string& column, std::string& name) {
       int i = 0, j = 0;
       T largest = -1;
-      for (int r = 0; r < n; ++r)
-        for (int c = 0; c < n; ++c) {
+      for (int r = 0; r < m.rows(); ++r)
+        for (int c = 0; c < m.cols(); ++c) {
           using std::abs, std::isnan;
           const T value = isnan(m(r, c)) ? std::numeric_limits<T>::infinity() : T(abs(m(r, c)));
           if (value > largest) largest = value, i = r, j = c;
         }
-      name = n == 1
+      name = m.rows() == 1
                  ? row + " " + column
                  : row + "_" + std::to_string(i + 1) + " " + column + "_" + std::to_string(j + 1);
       return m(i, j);
@@ -217,8 +223,8 @@ SeparableSystem<typename System::Scalar, System::dimension> separable_form(
   SeparableSystem<T, n> separable;
   separable.mass = lagrangian_derivatives(system, at.q, at.w).d2L_dw2;
   separable.inverse_mass = separable.mass.inverse();
-  separable.force = [system](const std::array<T, n>& q) { return force_at(system, q); };
-  separable.force_jet = [system](const std::array<PhaseJet<T, n>, n>& q) { return force_at(system, q); };
+  separable.force = [system](const Coordinates<T, n>& q) { return force_at(system, q); };
+  separable.force_jet = [system](const Coordinates<PhaseJet<T, n>, n>& q) { return force_at(system, q); };
   return separable;
 }
 

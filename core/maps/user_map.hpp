@@ -16,6 +16,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -60,9 +61,37 @@ class UserMap final : public SeparableMap<UserMap<Method, T, n>, T, n> {
  private:
   // The user's step in scalar S, with q'' = M⁻¹ F(q) from the force in S.
   template <class S, class Force>
-  void advance(std::array<S, n>& q, std::array<S, n>& w, const S& h, const Force& force) const {
-    auto acceleration = [&](const std::array<S, n>& at) { return Base::times(this->system().inverse_mass, force(at)); };
-    method_.step(q, w, h, acceleration);
+  void advance(Coordinates<S, n>& q, Coordinates<S, n>& w, const S& h, const Force& force) const {
+    auto acceleration = [&](const Coordinates<S, n>& at) { return Base::times(this->system().inverse_mass, force(at)); };
+    if constexpr (requires { method_.step(q, w, h, acceleration); }) {
+      method_.step(q, w, h, acceleration);
+    } else if (q.size() == 3) {
+      step_in_array<3>(q, w, h, acceleration);
+    } else if (q.size() == 4) {
+      step_in_array<4>(q, w, h, acceleration);
+    } else {
+      throw std::invalid_argument("the registered map '" + info_.name + "' is written for std::array<S, n>: a system of " +
+                                  std::to_string(q.size()) +
+                                  " coordinates passes std::vector<S> (write step() for any container with size() and [])");
+    }
+  }
+
+  // A method written for std::array<S, k> on a system sized at run time (k = 3, 4: what vivv
+  // compiled for such methods before sizes were run-time ones).
+  template <std::size_t k, class P, class S, class Acceleration>
+  void step_in_array(P& q, P& w, const S& h, const Acceleration& acceleration) const {
+    std::array<S, k> x, v;
+    for (std::size_t i = 0; i < k; ++i) x[i] = q[i], v[i] = w[i];
+    auto in_array = [&](const std::array<S, k>& at) {
+      const P result = acceleration(P(at.begin(), at.end()));
+      std::array<S, k> a;
+      for (std::size_t i = 0; i < k; ++i) a[i] = result[i];
+      return a;
+    };
+    if constexpr (requires { method_.step(x, v, h, in_array); }) {
+      method_.step(x, v, h, in_array);
+      for (std::size_t i = 0; i < k; ++i) q[i] = x[i], w[i] = v[i];
+    }
   }
 
   RegisteredMap info_;

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+#include <utility>
 
 #include "core/numerics/scalar.hpp"
 
@@ -87,15 +88,16 @@ std::string describe_corrections(const std::vector<T>& corrections) {
 // `scale[i]` is the size below which x_i's rounding is not measured: every
 // correction component must fall below correction_ulps · ε · max(scale_i, |x_i|).
 template <class T, int m, class Evaluate>
-SolveReport<T> newton_solve(Vector<T, m>& x, Evaluate&& evaluate, const NewtonOptions& options = {},
-                            const Vector<T, m>& scale = Vector<T, m>::Ones()) {
+SolveReport<T> newton_solve(Vector<T, m>& x, Evaluate&& evaluate, const NewtonOptions& options,
+                            const Vector<T, m>& scale) {
   using std::isfinite;
   SolveReport<T> report;
   T previous_correction = 0;
   T smallest_correction = 0;
   int without_progress = 0;
-  Vector<T, m> residual = Vector<T, m>::Zero();
-  Matrix<T, m, m> jacobian = Matrix<T, m, m>::Zero();
+  const int count = static_cast<int>(x.size());
+  Vector<T, m> residual = zero_vector<T, m>(count);
+  Matrix<T, m, m> jacobian = zero_matrix<T, m, m>(count, count);
   for (report.iterations = 1; report.iterations <= options.max_iterations; ++report.iterations) {
     evaluate(x, residual, jacobian);
     // A formula evaluated outside its domain (√ or log of a negative number) gives NaN: say so,
@@ -129,7 +131,7 @@ SolveReport<T> newton_solve(Vector<T, m>& x, Evaluate&& evaluate, const NewtonOp
                               ? T(report.correction / (previous_correction - report.correction))
                               : T(1);
     bool small = true;
-    for (int i = 0; i < m; ++i) {
+    for (int i = 0; i < count; ++i) {
       using std::abs;
       T size = std::max<T>(scale[i], abs(x[i]));
       small = small &&
@@ -180,6 +182,12 @@ template <class T>
 const SolveReport<T>& require_converged(const SolveReport<T>& report, const std::string& what) {
   if (!report.converged) throw SolverError(what + ": Newton failed: " + report.failure);
   return report;
+}
+
+// The same with every scale 1.
+template <class T, int m, class Evaluate>
+SolveReport<T> newton_solve(Vector<T, m>& x, Evaluate&& evaluate, const NewtonOptions& options = {}) {
+  return newton_solve<T, m>(x, std::forward<Evaluate>(evaluate), options, Vector<T, m>::Ones(x.size()));
 }
 
 }  // namespace vivv

@@ -164,6 +164,26 @@ using Vector = Eigen::Matrix<T, n, 1>;
 template <class T, int rows, int cols>
 using Matrix = Eigen::Matrix<T, rows, cols>;
 
+// The dimension of a system known only at run time (a formula system of any size): as a
+// template argument it makes every vector and matrix Eigen-dynamic and every jet a heap jet
+// (core/autodiff/jet.hpp). Fixed dimensions stay where they are faster (1 and 2 coordinates).
+inline constexpr int any_size = Eigen::Dynamic;
+
+// 2n, n + k at compile time: any_size stays any_size.
+constexpr int twice(int n) { return n == any_size ? any_size : 2 * n; }
+constexpr int plus(int n, int k) { return n == any_size ? any_size : n + k; }
+
+// A zero vector of n components and an n × m zero matrix, for fixed and run-time sizes alike
+// (a fixed size asserts that n is it).
+template <class T, int N>
+Vector<T, N> zero_vector(int n) {
+  return Vector<T, N>::Zero(n);
+}
+template <class T, int R, int C>
+Matrix<T, R, C> zero_matrix(int rows, int cols) {
+  return Matrix<T, R, C>::Zero(rows, cols);
+}
+
 // A vector as "(x_1, x_2, …)" with `digits` significant digits each, for messages.
 template <class T, int n>
 std::string to_decimal_tuple(const Vector<T, n>& v, int digits = 8) {

@@ -131,14 +131,15 @@ QxQDiscretization<T> without_twin(const QxQDiscretization<T>& d) {
 }
 
 // L_d(q_b, q_e; h) evaluated in S (T or a jet over T).
-template <LagrangianSystem System, class S>
-S discrete_lagrangian(const System& system,
-                      const QxQDiscretization<typename System::Scalar>& discretization,
-                      const Point<S, System::dimension>& q_b, const Point<S, System::dimension>& q_e,
-                      const typename System::Scalar& h) {
+template <LagrangianSystem System, class P>
+auto discrete_lagrangian(const System& system,
+                         const QxQDiscretization<typename System::Scalar>& discretization,
+                         const P& q_b, const P& q_e, const typename System::Scalar& h) {
+  using S = typename P::value_type;
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
-  Point<S, n> velocity, q_mid;
+  constexpr int N = System::dimension;
+  const int n = static_cast<int>(q_b.size());
+  Coordinates<S, N> velocity = make_point<S, N>(n), q_mid = make_point<S, N>(n);
   for (int i = 0; i < n; ++i) velocity[i] = (q_e[i] - q_b[i]) / h;
   const T& c = discretization.parameter;
   auto on_segment = [&](const T& fraction) {
@@ -166,7 +167,7 @@ S discrete_lagrangian(const System& system,
       value = h * ((1 - c) * system.lagrangian(q_b, velocity) + c * system.lagrangian(q_e, velocity));
       break;
     case QxQRule::expression: {
-      std::array<S, 2 * n + 1> x;
+      Coordinates<S, plus(twice(N), 1)> x = make_point<S, plus(twice(N), 1)>(2 * n + 1);
       for (int i = 0; i < n; ++i) x[i] = q_b[i], x[n + i] = q_e[i];
       x[2 * n] = S(h);
       value = discretization.expression->evaluate_first(x.data());
@@ -175,7 +176,7 @@ S discrete_lagrangian(const System& system,
     case QxQRule::galerkin:
       // Extremized by Newton in T: its derivatives come from discrete_legendre, not from jets.
       if constexpr (std::is_same_v<S, T>) {
-        value = galerkin_legendre(system, *discretization.galerkin, as_vector<T, n>(q_b), as_vector<T, n>(q_e), h).value;
+        value = galerkin_legendre(system, *discretization.galerkin, as_vector<T, N>(q_b), as_vector<T, N>(q_e), h).value;
       } else {
         throw std::logic_error("a Galerkin L_d is evaluated in the working precision only (discrete_legendre gives "
                                "its derivatives)");
@@ -197,14 +198,15 @@ auto discrete_lagrangian_jet(const System& system,
                              const QxQDiscretization<typename System::Scalar>& discretization,
                              const VectorOf<System>& q_b, const VectorOf<System>& q_e,
                              const typename System::Scalar& h) {
-  constexpr int n = System::dimension;
-  using J = Jet<typename System::Scalar, 2 * n, Order, Split>;
-  Point<J, n> jet_b, jet_e;
+  constexpr int N = System::dimension;
+  const int n = static_cast<int>(q_b.size());
+  using J = Jet<typename System::Scalar, twice(N), Order, N == any_size && Split ? any_size : Split>;
+  Coordinates<J, N> jet_b = make_point<J, N>(n), jet_e = make_point<J, N>(n);
   for (int i = 0; i < n; ++i) {
-    jet_b[i] = J::variable(q_b[i], i);
-    jet_e[i] = J::variable(q_e[i], n + i);
+    jet_b[i] = J::variable(q_b[i], i, 2 * n);
+    jet_e[i] = J::variable(q_e[i], n + i, 2 * n);
   }
-  return J(discrete_lagrangian(system, discretization, jet_b, jet_e, h));
+  return with_size(J(discrete_lagrangian(system, discretization, jet_b, jet_e, h)), 2 * n);
 }
 
 template <LagrangianSystem System>
@@ -213,11 +215,12 @@ auto discrete_legendre(const System& system,
                        const VectorOf<System>& q_b, const VectorOf<System>& q_e,
                        const typename System::Scalar& h) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
+  constexpr int N = System::dimension;
+  const int n = static_cast<int>(q_b.size());
   if (discretization.rule == QxQRule::galerkin) {
     // The envelope theorem and the Schur complement (core/qxq/galerkin.hpp); a twin term
     // a·h^s·(q_e − q_b) adds a·h^s to both momenta and nothing to their derivatives.
-    DiscreteLegendre<T, n> d = galerkin_legendre(system, *discretization.galerkin, q_b, q_e, h);
+    DiscreteLegendre<T, N> d = galerkin_legendre(system, *discretization.galerkin, q_b, q_e, h);
     if (discretization.twin) {
       using std::pow;
       const T scale = pow(h, discretization.twin->power);
@@ -230,7 +233,7 @@ auto discrete_legendre(const System& system,
     return d;
   }
   const auto L = discrete_lagrangian_jet<2>(system, discretization, q_b, q_e, h);
-  DiscreteLegendre<T, n> d;
+  DiscreteLegendre<T, N> d(n);
   d.value = L.value;
   for (int i = 0; i < n; ++i) {
     d.p_begin[i] = -L.gradient[i];
@@ -251,6 +254,7 @@ auto discrete_legendre(const System& system,
 // discrete_legendre's.
 template <class T, int n>
 struct BeginMomentum {
+  explicit BeginMomentum(int size) : p_begin(zero_vector<T, n>(size)), dp_begin_dq_e(zero_matrix<T, n, n>(size, size)) {}
   Vector<T, n> p_begin;
   Matrix<T, n, n> dp_begin_dq_e;
 };
@@ -261,15 +265,16 @@ auto begin_momentum(const System& system,
                     const VectorOf<System>& q_b, const VectorOf<System>& q_e,
                     const typename System::Scalar& h) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
-  BeginMomentum<T, n> d;
+  constexpr int N = System::dimension;
+  const int n = static_cast<int>(q_b.size());
+  BeginMomentum<T, N> d(n);
   if (discretization.rule == QxQRule::galerkin) {
-    DiscreteLegendre<T, n> full = discrete_legendre(system, discretization, q_b, q_e, h);
+    DiscreteLegendre<T, N> full = discrete_legendre(system, discretization, q_b, q_e, h);
     d.p_begin = std::move(full.p_begin);
     d.dp_begin_dq_e = std::move(full.dp_begin_dq_e);
     return d;
   }
-  const auto L = discrete_lagrangian_jet<2, n>(system, discretization, q_b, q_e, h);
+  const auto L = discrete_lagrangian_jet<2, N>(system, discretization, q_b, q_e, h);
   for (int i = 0; i < n; ++i) {
     d.p_begin[i] = -L.gradient[i];
     for (int j = 0; j < n; ++j) d.dp_begin_dq_e(i, j) = -L.second(i, n + j);
@@ -282,6 +287,7 @@ auto begin_momentum(const System& system,
 // discrete_legendre's (a jet's gradient is never computed from its Hessian).
 template <class T, int n>
 struct DiscreteMomenta {
+  explicit DiscreteMomenta(int size) : p_begin(zero_vector<T, n>(size)), p_end(zero_vector<T, n>(size)) {}
   T value;
   Vector<T, n> p_begin, p_end;
 };
@@ -292,10 +298,11 @@ auto discrete_momenta(const System& system,
                       const VectorOf<System>& q_b, const VectorOf<System>& q_e,
                       const typename System::Scalar& h) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
-  DiscreteMomenta<T, n> d;
+  constexpr int N = System::dimension;
+  const int n = static_cast<int>(q_b.size());
+  DiscreteMomenta<T, N> d(n);
   if (discretization.rule == QxQRule::galerkin) {
-    const DiscreteLegendre<T, n> full = discrete_legendre(system, discretization, q_b, q_e, h);
+    const DiscreteLegendre<T, N> full = discrete_legendre(system, discretization, q_b, q_e, h);
     d.value = full.value, d.p_begin = full.p_begin, d.p_end = full.p_end;
     return d;
   }

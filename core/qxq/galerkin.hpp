@@ -85,6 +85,8 @@ struct GalerkinRule {
 // L's value, gradient and full Hessian at (x, v), by automatic differentiation.
 template <class T, int n>
 struct LagrangianHessian {
+  explicit LagrangianHessian(int size)
+      : L_q(size), L_w(size), L_qq(size, size), L_qw(size, size), L_ww(size, size) {}
   T value;
   Vector<T, n> L_q, L_w;
   Matrix<T, n, n> L_qq, L_qw, L_ww;  // L_qw(r, c) = ∂²L/∂q_r∂w_c
@@ -94,12 +96,13 @@ template <LagrangianSystem System>
 auto lagrangian_hessian(const System& system, const VectorOf<System>& x,
                         const VectorOf<System>& v) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
-  using J = Jet<T, 2 * n>;
-  Point<J, n> jet_x, jet_v;
-  for (int i = 0; i < n; ++i) jet_x[i] = J::variable(x[i], i), jet_v[i] = J::variable(v[i], n + i);
-  const J L = system.lagrangian(jet_x, jet_v);
-  LagrangianHessian<T, n> d;
+  constexpr int N = System::dimension;
+  const int n = static_cast<int>(x.size());
+  using J = Jet<T, twice(N)>;
+  Coordinates<J, N> jet_x = make_point<J, N>(n), jet_v = make_point<J, N>(n);
+  for (int i = 0; i < n; ++i) jet_x[i] = J::variable(x[i], i, 2 * n), jet_v[i] = J::variable(v[i], n + i, 2 * n);
+  const J L = with_size(J(system.lagrangian(jet_x, jet_v)), 2 * n);
+  LagrangianHessian<T, N> d(n);
   d.value = L.value;
   for (int r = 0; r < n; ++r) {
     d.L_q[r] = L.gradient[r], d.L_w[r] = L.gradient[n + r];
@@ -131,15 +134,16 @@ GalerkinAction<typename System::Scalar> galerkin_action(
     const System& system, const GalerkinRule<typename System::Scalar>& rule,
     const std::vector<VectorOf<System>>& C, const typename System::Scalar& h, int first, int last) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
+  constexpr int N = System::dimension;
+  const int n = static_cast<int>(C.front().size());
   const int s = rule.spec.degree, blocks = last - first + 1;
   GalerkinAction<T> S{
       T(0), Eigen::Matrix<T, Eigen::Dynamic, 1>::Zero(n * blocks),
       Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>::Zero(n * blocks, n * blocks)};
   std::vector<T> a(blocks), d(blocks), a_weighted(blocks), d_weighted(blocks);
   // M_k = ∇²L [a_k I; d_k I]: rows 0 … n − 1 the q-rows, n … 2n − 1 the w-rows.
-  std::vector<Eigen::Matrix<T, 2 * n, n>> M(blocks);
-  Vector<T, n> x, v;
+  std::vector<Eigen::Matrix<T, twice(N), N>> M(blocks, Eigen::Matrix<T, twice(N), N>(2 * n, n));
+  Vector<T, N> x(n), v(n);
   T scratch, term;
   for (std::size_t i = 0; i < rule.weights.size(); ++i) {
     for (int r = 0; r < n; ++r) {
@@ -217,11 +221,12 @@ DiscreteLegendre<typename System::Scalar, System::dimension> galerkin_legendre(
     const System& system, const GalerkinRule<typename System::Scalar>& rule,
     const VectorOf<System>& q_b, const VectorOf<System>& q_e, const typename System::Scalar& h) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
+  constexpr int N = System::dimension;
+  const int n = static_cast<int>(q_b.size());
   using std::abs;
   using std::max;
   const int s = rule.spec.degree;
-  std::vector<Vector<T, n>> C(s + 1);
+  std::vector<Vector<T, N>> C(s + 1);
   for (int j = 0; j <= s; ++j) C[j] = q_b + (T(j) / s) * (q_e - q_b);
   const int interior = n * (s - 1);
   // Newton on the interior values, with the interior blocks of G and H alone; converged when the
@@ -237,7 +242,7 @@ DiscreteLegendre<typename System::Scalar, System::dimension> galerkin_legendre(
         inner.hessian.fullPivLu().solve(inner.gradient);
     T size = 1;
     for (int j = 1; j < s; ++j) {
-      C[j] -= correction.template segment<n>(n * (j - 1));
+      C[j] -= correction.segment(n * (j - 1), n);
       size = max(size, T(C[j].cwiseAbs().maxCoeff()));
     }
     const T largest = correction.cwiseAbs().maxCoeff();
@@ -253,28 +258,28 @@ DiscreteLegendre<typename System::Scalar, System::dimension> galerkin_legendre(
   }
   const GalerkinAction<T> S = galerkin_action(system, rule, C, h, 0, s);
   // Reduced Hessian over the end blocks: H_ee − H_ei H_ii⁻¹ H_ie.
-  Eigen::Matrix<T, 2 * n, 2 * n> ends;
-  Eigen::Matrix<T, 2 * n, Eigen::Dynamic> ends_interior(2 * n, interior);
+  Eigen::Matrix<T, twice(N), twice(N)> ends(2 * n, 2 * n);
+  Eigen::Matrix<T, twice(N), Eigen::Dynamic> ends_interior(2 * n, interior);
   const int last = n * s;
-  ends.template block<n, n>(0, 0) = S.hessian.template block<n, n>(0, 0);
-  ends.template block<n, n>(0, n) = S.hessian.template block<n, n>(0, last);
-  ends.template block<n, n>(n, 0) = S.hessian.template block<n, n>(last, 0);
-  ends.template block<n, n>(n, n) = S.hessian.template block<n, n>(last, last);
+  ends.block(0, 0, n, n) = S.hessian.block(0, 0, n, n);
+  ends.block(0, n, n, n) = S.hessian.block(0, last, n, n);
+  ends.block(n, 0, n, n) = S.hessian.block(last, 0, n, n);
+  ends.block(n, n, n, n) = S.hessian.block(last, last, n, n);
   if (interior > 0) {
     ends_interior.topRows(n) = S.hessian.block(0, n, n, interior);
     ends_interior.bottomRows(n) = S.hessian.block(last, n, n, interior);
-    const Eigen::Matrix<T, Eigen::Dynamic, 2 * n> solved =
-        S.hessian.block(n, n, interior, interior).fullPivLu().solve(Eigen::Matrix<T, Eigen::Dynamic, 2 * n>(ends_interior.transpose()));
+    const Eigen::Matrix<T, Eigen::Dynamic, twice(N)> solved =
+        S.hessian.block(n, n, interior, interior).fullPivLu().solve(Eigen::Matrix<T, Eigen::Dynamic, twice(N)>(ends_interior.transpose()));
     ends -= ends_interior * solved;
   }
-  DiscreteLegendre<T, n> d;
+  DiscreteLegendre<T, N> d(n);
   d.value = S.value;
-  d.p_begin = -S.gradient.template segment<n>(0);
-  d.p_end = S.gradient.template segment<n>(last);
-  d.dp_begin_dq_b = -ends.template block<n, n>(0, 0);
-  d.dp_begin_dq_e = -ends.template block<n, n>(0, n);
-  d.dp_end_dq_b = ends.template block<n, n>(n, 0);
-  d.dp_end_dq_e = ends.template block<n, n>(n, n);
+  d.p_begin = -S.gradient.segment(0, n);
+  d.p_end = S.gradient.segment(last, n);
+  d.dp_begin_dq_b = -ends.block(0, 0, n, n);
+  d.dp_begin_dq_e = -ends.block(0, n, n, n);
+  d.dp_end_dq_b = ends.block(n, 0, n, n);
+  d.dp_end_dq_e = ends.block(n, n, n, n);
   return d;
 }
 

@@ -21,11 +21,14 @@ struct ForceShifted {
   System base;
   std::vector<Scalar> c;
 
+  int size() const { return dimension_of(base); }
+
   // L_mod(q, w) = L(q, w) − c·q.
-  template <class S>
-  S lagrangian(const Point<S, dimension>& q, const Point<S, dimension>& w) const {
+  template <class P>
+  auto lagrangian(const P& q, const P& w) const {
+    using S = typename P::value_type;
     S value = base.lagrangian(q, w);
-    for (int i = 0; i < dimension; ++i) value -= c[i] * q[i];
+    for (std::size_t i = 0; i < q.size(); ++i) value -= c[i] * q[i];
     return value;
   }
 };

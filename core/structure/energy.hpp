@@ -19,10 +19,11 @@ auto velocity_for_momentum(const System& system, const VectorOf<System>& q,
                            const VectorOf<System>& p,
                            VectorOf<System> guess) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
-  auto report = newton_solve<T, n>(
+  constexpr int N = System::dimension;
+  const int n = static_cast<int>(q.size());
+  auto report = newton_solve<T, N>(
       guess,
-      [&](const Vector<T, n>& w, Vector<T, n>& residual, Matrix<T, n, n>& jacobian) {
+      [&](const Vector<T, N>& w, Vector<T, N>& residual, Matrix<T, N, N>& jacobian) {
         const auto L = lagrangian_in_velocity<2>(system, q, w);
         for (int i = 0; i < n; ++i) {
           residual[i] = L.gradient[i] - p[i];

@@ -36,6 +36,7 @@ namespace vivv {
 // U'(q) and U''(q) of U(q) = −L(q, 0), by automatic differentiation.
 template <class T, int n>
 struct PotentialDerivatives {
+  explicit PotentialDerivatives(int size) : gradient(size), hessian(size, size) {}
   T value;
   Vector<T, n> gradient;
   Matrix<T, n, n> hessian;
@@ -44,12 +45,13 @@ struct PotentialDerivatives {
 template <LagrangianSystem System>
 auto potential_derivatives(const System& system, const VectorOf<System>& q) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
-  using J = Jet<T, n>;
-  Point<J, n> jet_q, zero;
-  for (int i = 0; i < n; ++i) jet_q[i] = J::variable(q[i], i), zero[i] = J(T(0));
-  const J L = system.lagrangian(jet_q, zero);
-  PotentialDerivatives<T, n> U;
+  constexpr int N = System::dimension;
+  const int n = static_cast<int>(q.size());
+  using J = Jet<T, N>;
+  Coordinates<J, N> jet_q = make_point<J, N>(n), zero = make_point<J, N>(n);
+  for (int i = 0; i < n; ++i) jet_q[i] = J::variable(q[i], i, n), zero[i] = J(T(0));
+  const J L = with_size(J(system.lagrangian(jet_q, zero)), n);
+  PotentialDerivatives<T, N> U(n);
   U.value = -L.value;
   for (int i = 0; i < n; ++i) {
     U.gradient[i] = -L.gradient[i];
@@ -105,11 +107,13 @@ std::string unit_mass_defect(
   const T tolerance = 1024 * epsilon<T>();
   for (const auto& x : samples) {
     const auto d = lagrangian_derivatives(system, x.q, x.w);
-    const T mass = Matrix<T, n, n>(d.d2L_dw2 - Matrix<T, n, n>::Identity()).cwiseAbs().maxCoeff();
+    const int size = static_cast<int>(x.q.size());
+    const T mass =
+        Matrix<T, n, n>(d.d2L_dw2 - Matrix<T, n, n>::Identity(size, size)).cwiseAbs().maxCoeff();
     const T coupling = d.d2L_dwdq.cwiseAbs().maxCoeff();
-    const T linear = max_norm<T, n>(momentum(system, x.q, Vector<T, n>(Vector<T, n>::Zero())));
-    const std::string at = " at q = " + to_decimal<T>(x.q[0], 6) + (n > 1 ? ", …" : "") +
-                           ", w = " + to_decimal<T>(x.w[0], 6) + (n > 1 ? ", …" : "");
+    const T linear = max_norm<T, n>(momentum(system, x.q, zero_vector<T, n>(size)));
+    const std::string at = " at q = " + to_decimal<T>(x.q[0], 6) + (size > 1 ? ", …" : "") +
+                           ", w = " + to_decimal<T>(x.w[0], 6) + (size > 1 ? ", …" : "");
     if (!(mass <= tolerance))
       return "|d2L/dw2 - I| = " + to_decimal<T>(mass, 3) + at + " (a mass matrix other than I)";
     if (!(coupling <= tolerance * max(T(1), speed)))

@@ -3,7 +3,7 @@
 //
 // A system may declare a one-parameter symmetry group of its Lagrangian by its
 // infinitesimal generator ξ(q): the member
-//   Point<T, n> symmetry_generator(const Point<T, n>& q) const;
+//   Coordinates<T, n> symmetry_generator(const Coordinates<T, n>& q) const;
 // (and, when the symmetry is known only at run time, bool has_symmetry() const).
 // If L_d is invariant too, L_d(exp(sξ) q_b, exp(sξ) q_e) = L_d(q_b, q_e), then
 // D1 L_d · ξ(q_b) + D2 L_d · ξ(q_e) = 0, and the DEL conserves the discrete
@@ -15,8 +15,8 @@
 namespace vivv {
 
 template <class System>
-concept DeclaresSymmetry = requires(const System& system, const Point<typename System::Scalar, System::dimension>& q) {
-  { system.symmetry_generator(q) } -> std::convertible_to<Point<typename System::Scalar, System::dimension>>;
+concept DeclaresSymmetry = requires(const System& system, const Coordinates<typename System::Scalar, System::dimension>& q) {
+  { system.symmetry_generator(q) } -> std::convertible_to<Coordinates<typename System::Scalar, System::dimension>>;
 };
 
 // Whether `system` has a declared symmetry.
@@ -36,8 +36,8 @@ template <LagrangianSystem System>
 VectorOf<System> symmetry_generator(
     const System& system, const VectorOf<System>& q) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
-  return as_vector<T, n>(system.symmetry_generator(as_point<T, n>(q)));
+  constexpr int N = System::dimension;
+  return as_vector<T, N>(system.symmetry_generator(as_point<T, N>(q)));
 }
 
 // J = p · ξ(q), the momentum map of the symmetry at (q, p).

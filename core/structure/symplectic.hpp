@@ -21,16 +21,17 @@ namespace vivv {
 
 // The Jacobian ∂(q_{k+1}, p_{k+1})/∂(q_k, p_k) of the DEL's (q, p) map from the
 // derivatives of L_d (future) and L~_d (past) at (q_k, q_{k+1}).
-template <class T, int n>
-Matrix<T, 2 * n, 2 * n> del_map_jacobian(const DiscreteLegendre<T, n>& future, const DiscreteLegendre<T, n>& past) {
-  Matrix<T, n, 2 * n> right;  // (−B_b, I)
-  right.template leftCols<n>() = -future.dp_begin_dq_b;
-  right.template rightCols<n>().setIdentity();
-  const Matrix<T, n, 2 * n> dq_next = future.dp_begin_dq_e.partialPivLu().solve(right);
-  Matrix<T, 2 * n, 2 * n> jacobian;
-  jacobian.template topRows<n>() = dq_next;
-  jacobian.template bottomRows<n>() = past.dp_end_dq_e * dq_next;
-  jacobian.template bottomLeftCorner<n, n>() += past.dp_end_dq_b;
+template <class T, int N>
+Matrix<T, twice(N), twice(N)> del_map_jacobian(const DiscreteLegendre<T, N>& future, const DiscreteLegendre<T, N>& past) {
+  const int n = static_cast<int>(future.p_begin.size());
+  Matrix<T, N, twice(N)> right(n, 2 * n);  // (−B_b, I)
+  right.leftCols(n) = -future.dp_begin_dq_b;
+  right.rightCols(n).setIdentity();
+  const Matrix<T, N, twice(N)> dq_next = future.dp_begin_dq_e.partialPivLu().solve(right);
+  Matrix<T, twice(N), twice(N)> jacobian(2 * n, 2 * n);
+  jacobian.topRows(n) = dq_next;
+  jacobian.bottomRows(n) = past.dp_end_dq_e * dq_next;
+  jacobian.bottomLeftCorner(n, n) += past.dp_end_dq_b;
   return jacobian;
 }
 
@@ -47,11 +48,12 @@ T max_entry(const Matrix<T, rows, cols>& a) {
 // max |(JᵀΩJ − Ω)_ij|: zero for a symplectic map.
 template <class T, int m>
 T symplecticity_defect(const Matrix<T, m, m>& jacobian) {
-  static_assert(m % 2 == 0, "a map on (q, p) has an even dimension");
-  constexpr int n = m / 2;
-  Matrix<T, m, m> omega = Matrix<T, m, m>::Zero();
-  omega.template topRightCorner<n, n>().setIdentity();
-  omega.template bottomLeftCorner<n, n>() = -Matrix<T, n, n>::Identity();
+  static_assert(m == any_size || m % 2 == 0, "a map on (q, p) has an even dimension");
+  const int n = static_cast<int>(jacobian.rows()) / 2;
+  Matrix<T, m, m> omega = zero_matrix<T, m, m>(2 * n, 2 * n);
+  omega.topRightCorner(n, n).setIdentity();
+  omega.bottomLeftCorner(n, n).setIdentity();
+  omega.bottomLeftCorner(n, n) *= T(-1);
   return max_entry<T, m, m>(Matrix<T, m, m>(jacobian.transpose() * omega * jacobian - omega));
 }
 
@@ -83,8 +85,9 @@ JacobianAgreement<T> compare_with_differences(const Map& map, const Vector<T, m>
   using std::abs, std::max, std::pow, std::sqrt;
   const T root = pow(unit, T(1) / 3);
   auto differences = [&](const T& fraction) {
-    Matrix<T, m, m> d;
-    for (int j = 0; j < m; ++j) {
+    const int size = static_cast<int>(x.size());
+    Matrix<T, m, m> d(size, size);
+    for (int j = 0; j < size; ++j) {
       T width = max(T(abs(x[j])), T(abs(scale[j])));
       if (width == 0) width = 1;
       width *= root * fraction;

@@ -55,8 +55,14 @@ struct TQDiscretization {
 // A point of TQ in scalar S.
 template <class S, int n>
 struct TangentPoint {
-  Point<S, n> q, w;
+  Coordinates<S, n> q, w;
 };
+
+// A point of TQ with `size` coordinates (value-initialized).
+template <class S, int n>
+TangentPoint<S, n> make_tangent_point(int size) {
+  return {make_point<S, n>(size), make_point<S, n>(size)};
+}
 
 // The state v = (q, w) as a point of TQ.
 template <class T, int n>
@@ -77,7 +83,7 @@ class CurveSegment {
 
   template <class T>
   CurveSegment(const TQDiscretization<T>& d, const TangentPoint<S, n>& v, const T& h)
-      : alpha_minus_(-d.theta * h), alpha_plus_((1 - d.theta) * h) {
+      : alpha_minus_(-d.theta * h), alpha_plus_((1 - d.theta) * h), size_(static_cast<int>(v.q.size())) {
     switch (d.psi) {
       case CurveFamily::exact: {
         if (!d.acceleration)
@@ -99,9 +105,9 @@ class CurveSegment {
               "curve_segment: psi taylor needs the Euler–Lagrange tape (acceleration)");
         std::vector<S> q(v.q.begin(), v.q.end()), w(v.w.begin(), v.w.end());
         auto series = solution_taylor_coefficients<S, T>(*d.acceleration, q, w, d.r);
-        position_.resize(d.r + 1);
+        position_.assign(d.r + 1, make_point<S, n>(size_));
         for (int k = 0; k <= d.r; ++k)
-          for (int i = 0; i < n; ++i) position_[k][i] = std::move(series[i][k]);
+          for (int i = 0; i < size_; ++i) position_[k][i] = std::move(series[i][k]);
         break;
       }
     }
@@ -118,12 +124,12 @@ class CurveSegment {
   // (a constant time in T multiplies leaf by leaf, much cheaper in nested jets).
   template <class U>
   TangentPoint<S, n> at(const U& t) const {
-    TangentPoint<S, n> point;
+    TangentPoint<S, n> point = make_tangent_point<S, n>(size_);
     if (exact_) {
       if constexpr (std::is_same_v<U, Leaf>) {
         std::vector<S> q, w;
         exact_->at(t, q, w);
-        for (int i = 0; i < n; ++i) point.q[i] = std::move(q[i]), point.w[i] = std::move(w[i]);
+        for (int i = 0; i < size_; ++i) point.q[i] = std::move(q[i]), point.w[i] = std::move(w[i]);
         return point;
       } else {
         throw std::logic_error("curve_segment: psi exact is evaluated at constant times only");
@@ -142,11 +148,11 @@ class CurveSegment {
  private:
   // Σ_k p_k t^k, component by component.
   template <class U>
-  static Point<S, n> horner(const std::vector<Point<S, n>>& p, const U& t) {
+  static Coordinates<S, n> horner(const std::vector<Coordinates<S, n>>& p, const U& t) {
     if (p.empty()) throw std::logic_error("curve_segment: psi exact has no single polynomial");
-    Point<S, n> sum = p.back();
+    Coordinates<S, n> sum = p.back();
     for (int k = static_cast<int>(p.size()) - 2; k >= 0; --k) {
-      for (int i = 0; i < n; ++i) {
+      for (std::size_t i = 0; i < sum.size(); ++i) {
         if constexpr (std::is_same_v<U, S>) {
           sum[i] = sum[i] * t;
         } else {
@@ -159,8 +165,9 @@ class CurveSegment {
   }
 
   Leaf alpha_minus_, alpha_plus_;
-  std::vector<Point<S, n>> position_;  // c_0 … c_degree (linear, taylor)
-  std::vector<Point<S, n>> velocity_;  // k c_k, k = 1 … degree
+  int size_;  // the number of coordinates
+  std::vector<Coordinates<S, n>> position_;  // c_0 … c_degree (linear, taylor)
+  std::vector<Coordinates<S, n>> velocity_;  // k c_k, k = 1 … degree
   std::shared_ptr<const ExactCurve<S, Leaf>> exact_;  // exact
 };
 
@@ -174,25 +181,25 @@ TangentPoint<S, n> curve_segment(const TQDiscretization<T>& d, const TangentPoin
 
 // d−(v) = psi(h, α−, v), on a curve segment already built through v.
 template <class S, int n, class T>
-Point<S, n> d_minus(const TQDiscretization<T>& d, const CurveSegment<S, n>& curve, const T& h) {
+Coordinates<S, n> d_minus(const TQDiscretization<T>& d, const CurveSegment<S, n>& curve, const T& h) {
   return curve.at(T(-d.theta * h)).q;
 }
 
 // d+(v) = psi(h, α+, v), on a curve segment already built through v.
 template <class S, int n, class T>
-Point<S, n> d_plus(const TQDiscretization<T>& d, const CurveSegment<S, n>& curve, const T& h) {
+Coordinates<S, n> d_plus(const TQDiscretization<T>& d, const CurveSegment<S, n>& curve, const T& h) {
   return curve.at(T((1 - d.theta) * h)).q;
 }
 
 // d−(v) = psi(h, α−, v).
 template <class S, int n, class T>
-Point<S, n> d_minus(const TQDiscretization<T>& d, const TangentPoint<S, n>& v, const T& h) {
+Coordinates<S, n> d_minus(const TQDiscretization<T>& d, const TangentPoint<S, n>& v, const T& h) {
   return d_minus<S, n>(d, CurveSegment<S, n>(d, v, h), h);
 }
 
 // d+(v) = psi(h, α+, v).
 template <class S, int n, class T>
-Point<S, n> d_plus(const TQDiscretization<T>& d, const TangentPoint<S, n>& v, const T& h) {
+Coordinates<S, n> d_plus(const TQDiscretization<T>& d, const TangentPoint<S, n>& v, const T& h) {
   return d_plus<S, n>(d, CurveSegment<S, n>(d, v, h), h);
 }
 
@@ -206,7 +213,7 @@ S blown_up_lagrangian(const System& system, const TQDiscretization<typename Syst
                       const CurveSegment<S, System::dimension>& curve,
                       const typename System::Scalar& h) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
+  constexpr int N = System::dimension;
   S value = S(0);
   switch (d.lagrangian) {
     case TQLagrangianKind::quadrature:
@@ -230,16 +237,16 @@ S blown_up_lagrangian(const System& system, const TQDiscretization<typename Syst
       break;
     }
     case TQLagrangianKind::pullback:
-      value = discrete_lagrangian(system, d.qxq, d_minus<S, n>(d, curve, h),
-                                  d_plus<S, n>(d, curve, h), h) / h;
+      value = discrete_lagrangian(system, d.qxq, d_minus<S, N>(d, curve, h),
+                                  d_plus<S, N>(d, curve, h), h) / h;
       break;
   }
   if (d.twin) {
     using std::pow;
     T scale = pow(h, d.twin->power - 1);
-    auto minus = d_minus<S, n>(d, curve, h);
-    auto plus = d_plus<S, n>(d, curve, h);
-    for (int i = 0; i < n; ++i) value += scale * d.twin->a[i] * (plus[i] - minus[i]);
+    auto minus = d_minus<S, N>(d, curve, h);
+    auto plus = d_plus<S, N>(d, curve, h);
+    for (std::size_t i = 0; i < minus.size(); ++i) value += scale * d.twin->a[i] * (plus[i] - minus[i]);
   }
   return value;
 }
@@ -257,7 +264,7 @@ S blown_up_lagrangian(const System& system, const TQDiscretization<typename Syst
 //   ((Dd− N+)/h)ᵀ P− = −N+ᵀ ∇L̂_h(v).
 template <class S, int n>
 struct TQLegendre {
-  Point<S, n> d_minus, d_plus, p_plus, p_minus;
+  Coordinates<S, n> d_minus, d_plus, p_plus, p_minus;
 };
 
 template <LagrangianSystem System, class S>
@@ -265,19 +272,22 @@ TQLegendre<S, System::dimension> tq_legendre(const System& system,
                                              const TQDiscretization<typename System::Scalar>& d,
                                              const TangentPoint<S, System::dimension>& v,
                                              const typename System::Scalar& h) {
-  constexpr int n = System::dimension;
-  using J = Jet<S, 2 * n, 1>;  // first derivatives only
-  TangentPoint<J, n> jet_v;
+  constexpr int N = System::dimension;
+  const int n = static_cast<int>(v.q.size());
+  using J = Jet<S, twice(N), 1>;  // first derivatives only
+  TangentPoint<J, N> jet_v = make_tangent_point<J, N>(n);
   for (int i = 0; i < n; ++i) {
-    jet_v.q[i] = J::variable(v.q[i], i);
-    jet_v.w[i] = J::variable(v.w[i], n + i);
+    jet_v.q[i] = J::variable(v.q[i], i, 2 * n);
+    jet_v.w[i] = J::variable(v.w[i], n + i, 2 * n);
   }
-  const CurveSegment<J, n> curve(d, jet_v, h);
-  J lagrangian = blown_up_lagrangian(system, d, curve, h);
-  Point<J, n> minus = d_minus<J, n>(d, curve, h), plus = d_plus<J, n>(d, curve, h);
+  const CurveSegment<J, N> curve(d, jet_v, h);
+  J lagrangian = with_size(blown_up_lagrangian(system, d, curve, h), 2 * n);
+  Coordinates<J, N> minus = d_minus<J, N>(d, curve, h), plus = d_plus<J, N>(d, curve, h);
+  for (auto& x : minus) x.ensure_size(2 * n);
+  for (auto& x : plus) x.ensure_size(2 * n);
   // Blocks of Dd− = [A B] and Dd+ = [C D].
-  SmallMatrix<S, n, n> a, b, c, dd;
-  std::array<S, n> gradient_q, gradient_w;
+  SmallMatrix<S, N, N> a = make_small_matrix<S, N, N>(n, n), b = a, c = a, dd = a;
+  SmallVector<S, N> gradient_q = make_small_vector<S, N>(n), gradient_w = gradient_q;
   for (int i = 0; i < n; ++i) {
     gradient_q[i] = lagrangian.gradient[i];
     gradient_w[i] = lagrangian.gradient[n + i];
@@ -289,12 +299,12 @@ TQLegendre<S, System::dimension> tq_legendre(const System& system,
     }
   }
   // N− = [−A⁻¹B; I]: Dd+ N− = D − C A⁻¹B and N−ᵀ∇L̂ = ∇_w L̂ − (A⁻¹B)ᵀ ∇_q L̂.
-  auto kernel_minus = solve_columns<S, n, n>(a, b);
-  auto kernel_plus = solve_columns<S, n, n>(c, dd);
-  auto c_kernel = multiply<S, n, n, n>(c, kernel_minus);
-  auto a_kernel = multiply<S, n, n, n>(a, kernel_plus);
-  SmallMatrix<S, n, n> k_plus, k_minus;
-  std::array<S, n> rhs_plus, rhs_minus;
+  auto kernel_minus = solve_columns<S, N, N>(a, b);
+  auto kernel_plus = solve_columns<S, N, N>(c, dd);
+  auto c_kernel = multiply<S, N, N, N>(c, kernel_minus);
+  auto a_kernel = multiply<S, N, N, N>(a, kernel_plus);
+  SmallMatrix<S, N, N> k_plus = make_small_matrix<S, N, N>(n, n), k_minus = k_plus;
+  SmallVector<S, N> rhs_plus = make_small_vector<S, N>(n), rhs_minus = rhs_plus;
   for (int i = 0; i < n; ++i) {
     rhs_plus[i] = gradient_w[i];
     rhs_minus[i] = -gradient_w[i];
@@ -305,9 +315,10 @@ TQLegendre<S, System::dimension> tq_legendre(const System& system,
       rhs_minus[i] += kernel_plus[j][i] * gradient_q[j];
     }
   }
-  TQLegendre<S, n> result;
-  result.p_plus = solve<S, n>(transpose<S, n, n>(k_plus), rhs_plus);
-  result.p_minus = solve<S, n>(transpose<S, n, n>(k_minus), rhs_minus);
+  TQLegendre<S, N> result;
+  result.p_plus = solve<S, N>(transpose<S, N, N>(k_plus), rhs_plus);
+  result.p_minus = solve<S, N>(transpose<S, N, N>(k_minus), rhs_minus);
+  result.d_minus = make_point<S, N>(n), result.d_plus = make_point<S, N>(n);
   for (int i = 0; i < n; ++i) {
     result.d_minus[i] = minus[i].value;
     result.d_plus[i] = plus[i].value;

@@ -19,20 +19,21 @@
 namespace vivv {
 
 // The blown-up residual at the unknowns x = (z, w̃), in scalar S.
-template <LagrangianSystem System, class S>
-std::array<S, 2 * System::dimension> tq_residual(
-    const System& system, const TQDiscretization<typename System::Scalar>& d,
-    const State<typename System::Scalar, System::dimension>& v,
-    const TQLegendre<typename System::Scalar, System::dimension>& at_v,
-    const std::array<S, 2 * System::dimension>& x, const typename System::Scalar& h) {
-  constexpr int n = System::dimension;
-  TangentPoint<S, n> next;
+template <LagrangianSystem System, class P>
+P tq_residual(const System& system, const TQDiscretization<typename System::Scalar>& d,
+              const State<typename System::Scalar, System::dimension>& v,
+              const TQLegendre<typename System::Scalar, System::dimension>& at_v, const P& x,
+              const typename System::Scalar& h) {
+  using S = typename P::value_type;
+  constexpr int N = System::dimension;
+  const int n = static_cast<int>(v.q.size());
+  TangentPoint<S, N> next = make_tangent_point<S, N>(n);
   for (int i = 0; i < n; ++i) {
     next.q[i] = v.q[i] + h * x[i];
     next.w[i] = x[n + i];
   }
   auto legendre = tq_legendre(system, d, next, h);
-  std::array<S, 2 * n> residual;
+  Coordinates<S, twice(N)> residual = make_point<S, twice(N)>(2 * n);
   for (int i = 0; i < n; ++i) {
     residual[i] = (legendre.d_minus[i] - at_v.d_plus[i]) / h;
     residual[n + i] = legendre.p_minus[i] - at_v.p_plus[i];
@@ -41,11 +42,14 @@ std::array<S, 2 * System::dimension> tq_residual(
 }
 
 // F and J = dF/dx for Newton from F evaluated on the jets x_i = variable(i).
-template <class T, int m, class J>
-void split_jets(const std::array<J, m>& f, Vector<T, m>& residual, Matrix<T, m, m>& jacobian) {
-  for (int i = 0; i < m; ++i) {
+template <class T, int m, class P>
+void split_jets(const P& f, Vector<T, m>& residual, Matrix<T, m, m>& jacobian) {
+  using J = typename P::value_type;
+  const int size = static_cast<int>(f.size());
+  for (int i = 0; i < size; ++i) {
     residual[i] = f[i].value;
-    for (int j = 0; j < m; ++j) jacobian(i, j) = f[i].gradient[j];
+    const J row = with_size(f[i], size);
+    for (int j = 0; j < size; ++j) jacobian(i, j) = row.gradient[j];
   }
 }
 
@@ -57,6 +61,7 @@ bool pulls_back(const TQDiscretization<T>& d) {
 
 template <class T, int n>
 struct TQStep {
+  explicit TQStep(int size) : next{zero_vector<T, n>(size), zero_vector<T, n>(size)} {}
   State<T, n> next;
   SolveReport<T> report;
 };
@@ -71,31 +76,32 @@ TQStep<typename System::Scalar, System::dimension> tq_step_from(
     const System& system, const TQDiscretization<typename System::Scalar>& past,
     const TQDiscretization<typename System::Scalar>& future,
     const State<typename System::Scalar, System::dimension>& v, const typename System::Scalar& h,
-    const Vector<typename System::Scalar, 2 * System::dimension>& start, const NewtonOptions& options = {}) {
+    const Vector<typename System::Scalar, twice(System::dimension)>& start, const NewtonOptions& options = {}) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
-  constexpr int m = 2 * n;
-  using J = Jet<T, m, 1>;  // the Jacobian needs first derivatives only
+  constexpr int N = System::dimension;
+  constexpr int M = twice(N);
+  const int n = static_cast<int>(v.q.size()), m = 2 * n;
+  using J = Jet<T, M, 1>;  // the Jacobian needs first derivatives only
   auto at_v = tq_legendre(system, past, tangent_point(v), h);
-  Vector<T, m> x = start;
+  Vector<T, M> x = start;
   // The residual rounds at ε·|q|/h (its first block divides a difference of
   // configurations by h): z cannot be resolved below that, and q̃ = q + h z
   // is then still at working precision. A pulled-back L_h evaluates L_d at
   // (d−, d+) and so divides d+ − d− by h too: its P± and hence w̃ round there as well.
-  Vector<T, m> rounding_scale = Vector<T, m>::Ones();
-  const T point_scale = std::max<T>(T(1), max_norm<T, n>(v.q) / h);
+  Vector<T, M> rounding_scale = Vector<T, M>::Ones(m);
+  const T point_scale = std::max<T>(T(1), max_norm<T, N>(v.q) / h);
   const bool velocities_too = pulls_back(past) || pulls_back(future);
   for (int i = 0; i < n; ++i) {
     rounding_scale[i] = point_scale;
     if (velocities_too) rounding_scale[n + i] = point_scale;
   }
-  TQStep<T, n> step;
-  step.report = newton_solve<T, m>(
+  TQStep<T, N> step(n);
+  step.report = newton_solve<T, M>(
       x,
-      [&](const Vector<T, m>& at, Vector<T, m>& residual, Matrix<T, m, m>& jacobian) {
-        std::array<J, m> jet_x;
-        for (int i = 0; i < m; ++i) jet_x[i] = J::variable(at[i], i);
-        split_jets<T, m>(tq_residual(system, future, v, at_v, jet_x, h), residual, jacobian);
+      [&](const Vector<T, M>& at, Vector<T, M>& residual, Matrix<T, M, M>& jacobian) {
+        Coordinates<J, M> jet_x = make_point<J, M>(m);
+        for (int i = 0; i < m; ++i) jet_x[i] = J::variable(at[i], i, m);
+        split_jets<T, M>(tq_residual(system, future, v, at_v, jet_x, h), residual, jacobian);
       },
       options, rounding_scale);
   for (int i = 0; i < n; ++i) {
@@ -106,9 +112,10 @@ TQStep<typename System::Scalar, System::dimension> tq_step_from(
 }
 
 // The h = 0 solution of the blown-up equations, z = w̃ = w: where Newton starts.
-template <class T, int n>
-Vector<T, 2 * n> blown_up_identity(const State<T, n>& v) {
-  Vector<T, 2 * n> x;
+template <class T, int N>
+Vector<T, twice(N)> blown_up_identity(const State<T, N>& v) {
+  const int n = static_cast<int>(v.q.size());
+  Vector<T, twice(N)> x(2 * n);
   for (int i = 0; i < n; ++i) x[i] = v.w[i], x[n + i] = v.w[i];
   return x;
 }
@@ -175,6 +182,8 @@ std::vector<State<typename System::Scalar, System::dimension>> tq_trajectory(
 // v = ṽ of the h = 0 principle): Newton starts there.
 template <class T, int n>
 struct TQCriticalPair {
+  explicit TQCriticalPair(int size)
+      : v{zero_vector<T, n>(size), zero_vector<T, n>(size)}, v_next{zero_vector<T, n>(size), zero_vector<T, n>(size)} {}
   State<T, n> v, v_next;  // v and ṽ
   SolveReport<T> report;
 };
@@ -187,14 +196,15 @@ TQCriticalPair<typename System::Scalar, System::dimension> tq_critical_pair(
     const VectorOf<System>& q_plus, const typename System::Scalar& h,
     const NewtonOptions& options = {}) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
-  constexpr int m = 4 * n;
-  using J = Jet<T, m, 1>;  // the Jacobian needs first derivatives only
+  constexpr int N = System::dimension;
+  constexpr int M = twice(twice(N));
+  const int n = static_cast<int>(q_minus.size()), m = 4 * n;
+  using J = Jet<T, M, 1>;  // the Jacobian needs first derivatives only
   using std::max;
   if (past.theta != future.theta)
     throw std::invalid_argument("tq_critical_pair: the past and future discretizations need the same θ");
-  const Vector<T, n> z = (q_plus - q_minus) / h;
-  Vector<T, m> x;
+  const Vector<T, N> z = (q_plus - q_minus) / h;
+  Vector<T, M> x(m);
   for (int i = 0; i < n; ++i) {
     x[i] = past.theta * z[i] / 2;
     x[n + i] = z[i] / 2;
@@ -203,8 +213,8 @@ TQCriticalPair<typename System::Scalar, System::dimension> tq_critical_pair(
   }
   // As in tq_step: the configuration blocks divide differences of points by h,
   // and so do the velocity blocks of a pulled-back L_h.
-  Vector<T, m> rounding_scale = Vector<T, m>::Ones();
-  const T point_scale = max(T(1), T(max(max_norm<T, n>(q_minus), max_norm<T, n>(q_plus)) / h));
+  Vector<T, M> rounding_scale = Vector<T, M>::Ones(m);
+  const T point_scale = max(T(1), T(max(max_norm<T, N>(q_minus), max_norm<T, N>(q_plus)) / h));
   const bool velocities_too = pulls_back(past) || pulls_back(future);
   for (int i = 0; i < n; ++i) {
     rounding_scale[i] = rounding_scale[2 * n + i] = point_scale;
@@ -212,29 +222,29 @@ TQCriticalPair<typename System::Scalar, System::dimension> tq_critical_pair(
   }
   auto point_of = [&](const auto& at, int offset) {
     using S = std::decay_t<decltype(at[0])>;
-    TangentPoint<S, n> point;
+    TangentPoint<S, N> point = make_tangent_point<S, N>(n);
     for (int i = 0; i < n; ++i) {
       point.q[i] = q_minus[i] + h * at[offset + i];
       point.w[i] = at[offset + n + i];
     }
     return point;
   };
-  TQCriticalPair<T, n> pair;
-  pair.report = newton_solve<T, m>(
+  TQCriticalPair<T, N> pair(n);
+  pair.report = newton_solve<T, M>(
       x,
-      [&](const Vector<T, m>& at, Vector<T, m>& residual, Matrix<T, m, m>& jacobian) {
-        std::array<J, m> jet_x;
-        for (int i = 0; i < m; ++i) jet_x[i] = J::variable(at[i], i);
+      [&](const Vector<T, M>& at, Vector<T, M>& residual, Matrix<T, M, M>& jacobian) {
+        Coordinates<J, M> jet_x = make_point<J, M>(m);
+        for (int i = 0; i < m; ++i) jet_x[i] = J::variable(at[i], i, m);
         auto at_v = tq_legendre(system, past, point_of(jet_x, 0), h);
         auto at_next = tq_legendre(system, future, point_of(jet_x, 2 * n), h);
-        std::array<J, m> r;
+        Coordinates<J, M> r = make_point<J, M>(m);
         for (int i = 0; i < n; ++i) {
           r[i] = (at_v.d_minus[i] - q_minus[i]) / h;
           r[n + i] = (at_next.d_plus[i] - q_plus[i]) / h;
           r[2 * n + i] = (at_v.d_plus[i] - at_next.d_minus[i]) / h;
           r[3 * n + i] = at_v.p_plus[i] - at_next.p_minus[i];
         }
-        split_jets<T, m>(r, residual, jacobian);
+        split_jets<T, M>(r, residual, jacobian);
       },
       options, rounding_scale);
   for (int i = 0; i < n; ++i) {

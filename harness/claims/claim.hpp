@@ -6,7 +6,7 @@
 //   static constexpr const char* series_rules[];  // the rules its series may be decided by
 //                                                 // (reports/SCHEMA.md): `vivv report` and
 //                                                 // --baseline refuse a report naming another
-//   template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+//   template <LagrangianSystem System, class T = typename System::Scalar, int N = System::dimension>
 //   static void measure(const CaseContext<System>&, ClaimResult& claim);
 // which adds its series and evidence to the claim (result() made it, with the id, source and
 // prediction) and concludes it; and, if it predicts an order, theorem_order(context) returning it

@@ -26,21 +26,21 @@ template <LagrangianSystem System>
 std::vector<Series> del_local_error_series(const CaseContext<System>& context, int order, int states = 4,
                                            int extra_halvings = 80) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
+  constexpr int N = System::dimension;
   using std::isfinite;
   std::vector<T> steps = context.steps();
   for (int k = 0; k < extra_halvings; ++k) steps.push_back(steps.back() / 2);
   std::vector<Series> all;
   for (int j = 0; j < states; ++j) {
     const T t = context.final_time * T(j) / T(states);
-    const State<T, n> x = j == 0 ? context.initial : context.reference.advance(context.initial, t);
-    T scale = max_norm<T, n>(x.q);
+    const State<T, N> x = j == 0 ? context.initial : context.reference.advance(context.initial, t);
+    T scale = max_norm<T, N>(x.q);
     std::vector<T> error, used_h;
     // local-order's floor: the rounding of a step that divides by h, and the reference's.
     const auto floor_at = [&](const T& h) { return MapLocalOrderClaim::floor_at(context, scale, h); };
     for (const T& h : steps) {
       context.report("global-order: one DEL step from x(" + format_scalar(t, 4) + ") at h = " + to_decimal<T>(h, 6));
-      const Vector<T, n> q1 = context.reference.advance(x, h).q, q2 = context.reference.advance(x, T(2 * h)).q;
+      const Vector<T, N> q1 = context.reference.advance(x, h).q, q2 = context.reference.advance(x, T(2 * h)).q;
       const auto [q_next, report] = del_step(context.system, context.scheme, x.q, q1, h);
       // A step too large for Newton from this state (h = 2 on an elastic pendulum) starts the
       // series at a smaller h; one that fails below a converged one ends it.
@@ -48,9 +48,9 @@ std::vector<Series> del_local_error_series(const CaseContext<System>& context, i
         if (error.empty()) continue;
         break;
       }
-      const T e = max_norm<T, n>(Vector<T, n>(q_next - q2));
+      const T e = max_norm<T, N>(Vector<T, N>(q_next - q2));
       if (!isfinite(e)) throw std::domain_error("one DEL step at h = " + format_scalar(h, 6) + " is not finite");
-      scale = nan_max(scale, max_norm<T, n>(Vector<T, n>(q2 - x.q)));
+      scale = nan_max(scale, max_norm<T, N>(Vector<T, N>(q2 - x.q)));
       error.push_back(e);
       used_h.push_back(h);
       if (used_h.size() > context.steps().size() && e <= floor_at(h).value()) break;

@@ -37,7 +37,7 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
   static constexpr int resolved = 2;
   static constexpr int rounding_band = 1024;
 
-  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  template <LagrangianSystem System, class T = typename System::Scalar, int N = System::dimension>
   static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     using std::abs;
     using std::max;
@@ -50,16 +50,16 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
       std::vector<T> units;
       // J_k and the size of its terms at each step, judged against ulps × N × ε × the largest;
       // w[k] the velocity at step k (for a DEL its difference quotient).
-      auto judge = [&](const T& h, const std::vector<Vector<T, n>>& q,
-                       const std::vector<Vector<T, n>>& p, const std::vector<Vector<T, n>>& w) {
+      auto judge = [&](const T& h, const std::vector<Vector<T, N>>& q,
+                       const std::vector<Vector<T, N>>& p, const std::vector<Vector<T, N>>& w) {
         using std::isfinite;
-        const int N = static_cast<int>(p.size());
+        const int steps = static_cast<int>(p.size());
         // The terms of p at 64 steps spread over the run (and every step of a short one).
-        const int stride = std::max(1, N / 64);
+        const int stride = std::max(1, steps / 64);
         T first = 0, drift = 0, size = 0;
         int worst_step = 0;
-        for (int k = 0; k < N; ++k) {
-          const Vector<T, n> xi = symmetry_generator(context.system, q[k]);
+        for (int k = 0; k < steps; ++k) {
+          const Vector<T, N> xi = symmetry_generator(context.system, q[k]);
           require_finite(context, xi, q[k],
                          "at step " + std::to_string(k) + " (t = " + format_scalar(T(k * h), 8) +
                              ") of the run with h = " + format_scalar(h, 6));
@@ -68,14 +68,14 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
             throw CaseError(
                 context.spec.file, "system.lagrangian",
                 "the momentum p_k is not finite at step " + std::to_string(k) + " (t = " +
-                    format_scalar(T(k * h), 8) + ", q = " + to_decimal_tuple<T, n>(q[k]) +
+                    format_scalar(T(k * h), 8) + ", q = " + to_decimal_tuple<T, N>(q[k]) +
                     ") of the run with h = " + format_scalar(h, 6) +
                     ": the discrete trajectory left the Lagrangian's domain (a formula's "
                     "sqrt or log of a negative number, a division by zero)");
           if (k == 0) first = J;
-          T terms = max_norm<T, n>(p[k]);
-          if (k % stride == 0 || k == N - 1) terms = nan_max(terms, momentum_terms(context, q[k], w[k]));
-          size = nan_max(size, T(terms * max_norm<T, n>(xi)));
+          T terms = max_norm<T, N>(p[k]);
+          if (k % stride == 0 || k == steps - 1) terms = nan_max(terms, momentum_terms(context, q[k], w[k]));
+          size = nan_max(size, T(terms * max_norm<T, N>(xi)));
           if (abs(T(J - first)) > drift) drift = abs(T(J - first)), worst_step = k;
         }
         if (!(size > 0))
@@ -83,17 +83,17 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
               context.spec.file, "initial",
               "|p_k|·|xi(q_k)| is 0 at every step of the run with h = " + format_scalar(h, 6) +
                   ": the momentum map has no scale to judge a drift against");
-        const T unit = T(N) * context.working_epsilon() * size;
+        const T unit = T(steps) * context.working_epsilon() * size;
         units.push_back(unit);
         check.add(h, drift, T(ulps * unit),
-                  {{"N", N},
+                  {{"N", steps},
                    {"J_0", to_decimal<T>(first)},
                    {"worst_step", worst_step},
                    {"rounding_units", format_scalar(T(unit > 0 ? T(drift / unit) : T(0)), 3)}});
       };
       if (context.map) {
         visit_map_trajectories(context, "discrete-noether: momentum map", [&](const T& h, const auto& x) {
-          std::vector<Vector<T, n>> q, p, w;
+          std::vector<Vector<T, N>> q, p, w;
           for (std::size_t k = 0; k + 1 < x.size(); ++k)
             q.push_back(x[k].q), p.push_back(momentum(context.system, x[k].q, x[k].w)), w.push_back(x[k].w);
           judge(h, q, p, w);
@@ -104,8 +104,8 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
         visit_trajectories(
             context, "discrete-noether: momentum map",
             [&](const T& h, const auto& q) {
-              std::vector<Vector<T, n>> w;
-              for (std::size_t k = 0; k + 1 < q.size(); ++k) w.push_back(Vector<T, n>((q[k + 1] - q[k]) / h));
+              std::vector<Vector<T, N>> w;
+              for (std::size_t k = 0; k + 1 < q.size(); ++k) w.push_back(Vector<T, N>((q[k + 1] - q[k]) / h));
               judge(h, q, *trajectory_momenta(context, q, h), w);
             });
         claim.evidence["momentum_map"] = "J_k = p_begin[L_d](q_k, q_k+1) · xi(q_k), k = 0 … N−1";
@@ -178,16 +178,16 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
   template <LagrangianSystem System>
   static void check_generator(const CaseContext<System>& context) {
     using T = typename System::Scalar;
-    constexpr int n = System::dimension;
+    constexpr int N = System::dimension;
     using std::isfinite;
-    const Vector<T, n> xi = symmetry_generator(context.system, context.initial.q);
-    for (int i = 0; i < n; ++i)
+    const Vector<T, N> xi = symmetry_generator(context.system, context.initial.q);
+    for (int i = 0; i < static_cast<int>(xi.size()); ++i)
       if (!isfinite(xi[i]))
         throw CaseError(context.spec.file, "system.symmetry",
                         "the symmetry generator is " + to_decimal<T>(xi[i]) + " in component " +
                             std::to_string(i + 1) +
                             " at the initial state: it must be finite along the motion");
-    if (!(max_norm<T, n>(xi) > 0))
+    if (!(max_norm<T, N>(xi) > 0))
       throw CaseError(
           context.spec.file, "system.symmetry",
           "the symmetry generator vanishes at the initial state: its momentum map J = p·xi is 0 "
@@ -203,7 +203,7 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
                              const VectorOf<System>& xi, const VectorOf<System>& q,
                              const std::string& where) {
     using std::isfinite;
-    for (int i = 0; i < System::dimension; ++i)
+    for (int i = 0; i < static_cast<int>(xi.size()); ++i)
       if (!isfinite(xi[i]))
         throw CaseError(
             context.spec.file, "system.symmetry",
@@ -237,21 +237,22 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
                                   const State<typename System::Scalar, System::dimension>& state,
                                   const std::string& where) {
     using T = typename System::Scalar;
-    constexpr int n = System::dimension;
+    constexpr int N = System::dimension;
     using std::abs, std::max, std::pow;
-    const Vector<T, n>& q = state.q;
-    const Vector<T, n>& w = state.w;
-    const Vector<T, n> xi = symmetry_generator(context.system, q);
+    const Vector<T, N>& q = state.q;
+    const Vector<T, N>& w = state.w;
+    const Vector<T, N> xi = symmetry_generator(context.system, q);
     require_finite(context, xi, q, "at " + where + " of the reference flow");
     const auto d = lagrangian_derivatives(context.system, q, w);
-    Vector<T, n> along = Vector<T, n>::Zero();  // Dξ(q)·w
-    const T speed = max_norm<T, n>(w);
+    const int n = static_cast<int>(q.size());
+    Vector<T, N> along = zero_vector<T, N>(n);  // Dξ(q)·w
+    const T speed = max_norm<T, N>(w);
     if (speed > 0) {
-      const T length = max_norm<T, n>(q) > 0 ? T(max_norm<T, n>(q)) : T(1);
+      const T length = max_norm<T, N>(q) > 0 ? T(max_norm<T, N>(q)) : T(1);
       const T s = pow(epsilon<T>(), T(1) / 3) * length / speed;
-      const Vector<T, n> up = q + s * w, down = q - s * w;
-      const Vector<T, n> xi_up = symmetry_generator(context.system, up);
-      const Vector<T, n> xi_down = symmetry_generator(context.system, down);
+      const Vector<T, N> up = q + s * w, down = q - s * w;
+      const Vector<T, N> xi_up = symmetry_generator(context.system, up);
+      const Vector<T, N> xi_down = symmetry_generator(context.system, down);
       require_finite(context, xi_up, up, "beside " + where + " (a difference quotient's sample)");
       require_finite(context, xi_down, down,
                      "beside " + where + " (a difference quotient's sample)");

@@ -171,31 +171,31 @@ nlohmann::json energy_error_against_t(const T& h, const std::vector<T>& energies
   return {{"h", to_decimal<T>(h, 8)}, {"N", N}, {"t", t}, {"error", error}};
 }
 
-template <class T, int n>
+template <class T, int N>
 EnergyDrift<T> measure_energy_drift(const T& h, const std::vector<T>& energies,
-                                    const std::vector<Vector<T, n>>& velocities, const T& size,
+                                    const std::vector<Vector<T, N>>& velocities, const T& size,
                                     const T& unit = epsilon<T>()) {
   using std::abs;
   using std::max;
   using std::min;
   constexpr int ulps = 16;
   EnergyDrift<T> drift;
-  const std::size_t N = energies.size();
-  std::vector<T> e(N);
+  const std::size_t count = energies.size();
+  std::vector<T> e(count);
   T largest = 0, low = 0, high = 0;
-  for (std::size_t k = 0; k < N; ++k) {
+  for (std::size_t k = 0; k < count; ++k) {
     e[k] = energies[k] - energies[0];
     largest = nan_max(largest, T(abs(e[k])));
     low = nan_min(low, e[k]), high = nan_max(high, e[k]);
   }
   drift.spread = high - low;
-  drift.rounding = T(static_cast<int>(N)) * ulps * unit * nan_max(size, T(abs(energies[0])));
+  drift.rounding = T(static_cast<int>(count)) * ulps * unit * nan_max(size, T(abs(energies[0])));
   if (largest <= drift.rounding) {
     drift.status = "floor";
     return drift;
   }
   std::vector<std::pair<T, int>> ranges;  // (range, component), widest first
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < static_cast<int>(velocities[0].size()); ++i) {
     T lo = velocities[0][i], hi = lo;
     for (const auto& w : velocities) lo = nan_min(lo, w[i]), hi = nan_max(hi, w[i]);
     ranges.push_back({hi - lo, i});
@@ -426,7 +426,7 @@ struct EnergyBehaviourClaim : Claim<EnergyBehaviourClaim> {
       "shows no linear trend above its scatter that falls with h like the energy error itself; "
       "and its size max_k |E_k − E_0| falls at least like h^r (or is at the rounding level)";
 
-  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  template <LagrangianSystem System, class T = typename System::Scalar, int N = System::dimension>
   static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     using std::abs;
     using std::max;
@@ -434,7 +434,7 @@ struct EnergyBehaviourClaim : Claim<EnergyBehaviourClaim> {
     std::vector<T> largest_error;
     nlohmann::json against_t = nlohmann::json::array();
     const auto judge = [&](const std::vector<T>& energies,
-                           const std::vector<Vector<T, n>>& velocities, const T& size, const T& h) {
+                           const std::vector<Vector<T, N>>& velocities, const T& size, const T& h) {
       for (std::size_t k = 0; k < energies.size(); ++k)
         require_finite(energies[k], "the energy at step " + std::to_string(k) + " of the run with h = " +
                                         format_scalar(h, 6));
@@ -443,12 +443,12 @@ struct EnergyBehaviourClaim : Claim<EnergyBehaviourClaim> {
       T largest = 0;
       for (const T& energy : energies) largest = nan_max(largest, T(abs(T(energy - energies.front()))));
       largest_error.push_back(largest);
-      runs.push_back(measure_energy_drift<T, n>(h, energies, velocities, size, context.working_epsilon()));
+      runs.push_back(measure_energy_drift<T, N>(h, energies, velocities, size, context.working_epsilon()));
     };
     if (context.map) {
       visit_map_trajectories(context, "energy-behaviour: energy", [&](const T& h, const auto& x) {
         std::vector<T> energies;
-        std::vector<Vector<T, n>> velocities;
+        std::vector<Vector<T, N>> velocities;
         T size = 0;
         for (std::size_t k = 0; k + 1 < x.size(); ++k) {
           energies.push_back(energy(context.system, x[k].q, x[k].w));
@@ -461,12 +461,12 @@ struct EnergyBehaviourClaim : Claim<EnergyBehaviourClaim> {
     } else {
       visit_trajectories(context, "energy-behaviour: energy", [&](const T& h, const auto& q) {
         std::vector<T> energies;
-        std::vector<Vector<T, n>> velocities;
+        std::vector<Vector<T, N>> velocities;
         T size = 0;
         const auto momenta = trajectory_momenta(context, q, h);
         for (std::size_t k = 0; k + 1 < q.size(); ++k) {
-          const Vector<T, n>& p = (*momenta)[k];
-          const Vector<T, n> w = velocity_for_momentum(context.system, q[k], p, Vector<T, n>((q[k + 1] - q[k]) / h));
+          const Vector<T, N>& p = (*momenta)[k];
+          const Vector<T, N> w = velocity_for_momentum(context.system, q[k], p, Vector<T, N>((q[k + 1] - q[k]) / h));
           energies.push_back(energy(context.system, q[k], w));
           velocities.push_back(w);
           size = nan_max(size, T(abs(T(p.dot(w)))));

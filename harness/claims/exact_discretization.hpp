@@ -22,7 +22,7 @@ struct ExactDiscretizationClaim : Claim<ExactDiscretizationClaim> {
   // times the reference tolerance, relative to the state's size, bounds them all.
   static constexpr int tolerance_factor = 10;
 
-  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  template <LagrangianSystem System, class T = typename System::Scalar, int N = System::dimension>
   static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     using std::max;
     PerStepCheck<T> check;
@@ -32,9 +32,9 @@ struct ExactDiscretizationClaim : Claim<ExactDiscretizationClaim> {
     nlohmann::json printed = nlohmann::json::array();
     for (const T& h : context.steps()) {
       context.report("exact-discretization at h = " + to_decimal<T>(h, 6));
-      State<T, n> exact = context.exact(h);
-      const State<T, n> evolved = tq_map(context, *context.tq, h);
-      T scale = nan_max(T(1), nan_max(max_norm<T, n>(exact.q), max_norm<T, n>(exact.w)));
+      State<T, N> exact = context.exact(h);
+      const State<T, N> evolved = tq_map(context, *context.tq, h);
+      T scale = nan_max(T(1), nan_max(max_norm<T, N>(exact.q), max_norm<T, N>(exact.w)));
       check.add(h, state_distance(evolved, exact), T(tolerance_factor * context.reference.tolerance() * scale));
       if (theta != 0)
         printed.push_back({{"h", to_decimal<T>(h)},

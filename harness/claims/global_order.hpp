@@ -28,7 +28,7 @@ std::vector<State<typename System::Scalar, System::dimension>> map_trajectory(co
   std::vector<State<T, System::dimension>> x{context.initial};
   for (int k = 0; k < N; ++k) {
     x.push_back(context.map->step(x.back(), h));
-    for (int i = 0; i < System::dimension; ++i)
+    for (int i = 0; i < static_cast<int>(x.back().q.size()); ++i)
       if (!isfinite(x.back().q[i]) || !isfinite(x.back().w[i]))
         throw CaseError(context.spec.file, "steps",
                         context.map->name() + " left the finite numbers at step " + std::to_string(k + 1) +
@@ -228,20 +228,20 @@ struct GlobalOrderClaim : Claim<GlobalOrderClaim> {
     return context.map_order();
   }
 
-  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  template <LagrangianSystem System, class T = typename System::Scalar, int N = System::dimension>
   static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     SweepRun<System> run = run_sweep(context, context.scheme);
-    const State<T, n>& final_state = context.final_state;
-    Vector<T, n> p_exact = momentum(context.system, final_state.q, final_state.w);
+    const State<T, N>& final_state = context.final_state;
+    Vector<T, N> p_exact = momentum(context.system, final_state.q, final_state.w);
     std::vector<T> q_error, p_error;
     for (std::size_t i = 0; i < run.q_final.size(); ++i) {
-      q_error.push_back(max_norm<T, n>(run.q_final[i] - final_state.q));
-      p_error.push_back(max_norm<T, n>(run.p_final[i] - p_exact));
+      q_error.push_back(max_norm<T, N>(run.q_final[i] - final_state.q));
+      p_error.push_back(max_norm<T, N>(run.p_final[i] - p_exact));
     }
     claim.series.push_back(sweep_series(context, "|q_N − q(T)|", q_error, predicted(context)));
     using std::max;
-    const T size = nan_max({max_norm<T, n>(context.initial.q), max_norm<T, n>(final_state.q),
-                        max_norm<T, n>(Vector<T, n>(final_state.q - context.initial.q))});
+    const T size = nan_max({max_norm<T, N>(context.initial.q), max_norm<T, N>(final_state.q),
+                        max_norm<T, N>(Vector<T, N>(final_state.q - context.initial.q))});
     unresolved_motion_is_inconclusive(claim.series.back(), size, context.order_tolerance,
                                       context.spec.steps.back());
     claim.series.push_back(sweep_series(

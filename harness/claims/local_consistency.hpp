@@ -101,7 +101,7 @@ void add_signed_coefficient(ClaimResult& claim, const CaseContext<System>& conte
 template <LagrangianSystem System>
 void add_exact_coefficients(ClaimResult& claim, const CaseContext<System>& context, int r) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
+  constexpr int N = System::dimension;
   using std::abs, std::max, std::pow;
   constexpr int states = 4;
   const T rounding_units = 1024;
@@ -113,7 +113,7 @@ void add_exact_coefficients(ClaimResult& claim, const CaseContext<System>& conte
   std::vector<T> times, size(static_cast<std::size_t>(r + 1), T(0));
   for (int j = 0; j < states; ++j) {
     const T t = context.final_time * T(j) / T(states);
-    const State<T, n> x = j == 0 ? context.initial : context.reference.advance(context.initial, t);
+    const State<T, N> x = j == 0 ? context.initial : context.reference.advance(context.initial, t);
     std::vector<T> sizes;
     try {
       expansions.push_back(
@@ -125,10 +125,10 @@ void add_exact_coefficients(ClaimResult& claim, const CaseContext<System>& conte
     times.push_back(t);
     for (int k = 0; k <= r; ++k) size[k] = nan_max(size[k], sizes[k]);
     if (r >= 1) {
-      const Vector<T, n> p = momentum(context.system, x.q, x.w);
+      const Vector<T, N> p = momentum(context.system, x.q, x.w);
       T pw = 0;
-      for (int i = 0; i < n; ++i) pw += p[i] * x.w[i];
-      size[1] = nan_max(size[1], nan_max(abs(pw), abs(T(pw - context.system.lagrangian(as_point<T, n>(x.q), as_point<T, n>(x.w))))));
+      for (int i = 0; i < static_cast<int>(p.size()); ++i) pw += p[i] * x.w[i];
+      size[1] = nan_max(size[1], nan_max(abs(pw), abs(T(pw - context.system.lagrangian(as_point<T, N>(x.q), as_point<T, N>(x.w))))));
     }
   }
   const std::vector<T> steps = context.steps();
@@ -199,7 +199,7 @@ struct LagrangianOrderClaim : Claim<LagrangianOrderClaim> {
     return context.lagrangian_order() + 1;
   }
 
-  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  template <LagrangianSystem System, class T = typename System::Scalar, int N = System::dimension>
   static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     // L_d^E(q(0), q(h); h) by Newton shooting on the Taylor flow and the action
     // by composite Gauss–Legendre (references/exact_discrete_lagrangian.hpp).
@@ -212,16 +212,16 @@ struct LagrangianOrderClaim : Claim<LagrangianOrderClaim> {
     int nodes = 0;
     for (const T& h : context.steps()) {
       context.report("lagrangian-order: L_d^E at h = " + to_decimal<T>(h, 6));
-      Vector<T, n> q_end = context.exact(h).q;
+      Vector<T, N> q_end = context.exact(h).q;
       auto exact = exact_lagrangian(context.initial.q, q_end, h, &context.initial.w);
       if (!exact.converged)
         throw SolverError("exact discrete Lagrangian at h = " + to_decimal<T>(h, 17) +
                           ": shooting did not converge (residual " + to_decimal<T>(exact.residual) + ")");
       using std::max;
-      velocity_mismatch = nan_max(velocity_mismatch, max_norm<T, n>(exact.w_begin - context.initial.w));
+      velocity_mismatch = nan_max(velocity_mismatch, max_norm<T, N>(exact.w_begin - context.initial.w));
       nodes = exact.quadrature_nodes;
-      T discrete = discrete_lagrangian(context.system, context.scheme.future, as_point<T, n>(context.initial.q),
-                                       as_point<T, n>(q_end), h);
+      T discrete = discrete_lagrangian(context.system, context.scheme.future, as_point<T, N>(context.initial.q),
+                                       as_point<T, N>(q_end), h);
       signed_error.push_back(discrete - exact.value);
     }
     claim.evidence["exact_discrete_lagrangian"] =
@@ -264,19 +264,19 @@ struct LegendreOrderClaim : Claim<LegendreOrderClaim> {
     return context.lagrangian_order();
   }
 
-  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  template <LagrangianSystem System, class T = typename System::Scalar, int N = System::dimension>
   static void measure(const CaseContext<System>& context, ClaimResult& claim) {
-    Vector<T, n> p_start = momentum(context.system, context.initial.q, context.initial.w);
+    Vector<T, N> p_start = momentum(context.system, context.initial.q, context.initial.w);
     std::vector<T> end_error, begin_error, difference;
     for (const T& h : context.steps()) {
-      State<T, n> v = context.exact(h);
+      State<T, N> v = context.exact(h);
       auto legendre =
           discrete_legendre(context.system, context.scheme.future, context.initial.q, v.q, h);
-      Vector<T, n> end_residual = legendre.p_end - momentum(context.system, v.q, v.w);
-      Vector<T, n> begin_residual = legendre.p_begin - p_start;
-      end_error.push_back(max_norm<T, n>(end_residual));
-      begin_error.push_back(max_norm<T, n>(begin_residual));
-      difference.push_back(max_norm<T, n>(end_residual - begin_residual));
+      Vector<T, N> end_residual = legendre.p_end - momentum(context.system, v.q, v.w);
+      Vector<T, N> begin_residual = legendre.p_begin - p_start;
+      end_error.push_back(max_norm<T, N>(end_residual));
+      begin_error.push_back(max_norm<T, N>(begin_residual));
+      difference.push_back(max_norm<T, N>(end_residual - begin_residual));
     }
     const OrderPrediction transforms = predicted(context);
     const int theorem = context.lagrangian_order();

@@ -46,7 +46,7 @@ struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
 
   // The measurement with at most `halvings` halvings below the case's finest step (global-order
   // takes it 10 deep, harness/claims/global_order.hpp).
-  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  template <LagrangianSystem System, class T = typename System::Scalar, int N = System::dimension>
   static void measure_to(const CaseContext<System>& context, ClaimResult& claim, int halvings) {
     using std::max;
     if (context.tq)
@@ -61,19 +61,19 @@ struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
     nlohmann::json starts = nlohmann::json::array();
     for (int j = 0; j < states; ++j) {
       const T t = context.final_time * T(j) / T(states);
-      const State<T, n> x = j == 0 ? context.initial : context.reference.advance(context.initial, t);
-      const Vector<T, n> p = momentum(context.system, x.q, x.w);
-      T scale = nan_max(max_norm<T, n>(x.q), max_norm<T, n>(p));
+      const State<T, N> x = j == 0 ? context.initial : context.reference.advance(context.initial, t);
+      const Vector<T, N> p = momentum(context.system, x.q, x.w);
+      T scale = nan_max(max_norm<T, N>(x.q), max_norm<T, N>(p));
       std::vector<T> error, used_h;
       const auto measure = [&](const T& h) -> std::optional<T> {
         context.report("local-order: one step from x(" + format_scalar(t, 4) + ") at h = " + to_decimal<T>(h, 6));
-        const State<T, n> exact = context.reference.advance(x, h);
+        const State<T, N> exact = context.reference.advance(x, h);
         const auto [q1, p1] = one_step(context, x, h);
-        const Vector<T, n> p_exact = momentum(context.system, exact.q, exact.w);
-        const T e = nan_max(max_norm<T, n>(Vector<T, n>(q1 - exact.q)), max_norm<T, n>(Vector<T, n>(p1 - p_exact)));
+        const Vector<T, N> p_exact = momentum(context.system, exact.q, exact.w);
+        const T e = nan_max(max_norm<T, N>(Vector<T, N>(q1 - exact.q)), max_norm<T, N>(Vector<T, N>(p1 - p_exact)));
         using std::isfinite;
         if (!isfinite(e)) return std::nullopt;
-        scale = nan_max(scale, nan_max(max_norm<T, n>(Vector<T, n>(exact.q - x.q)), max_norm<T, n>(Vector<T, n>(p_exact - p))));
+        scale = nan_max(scale, nan_max(max_norm<T, N>(Vector<T, N>(exact.q - x.q)), max_norm<T, N>(Vector<T, N>(p_exact - p))));
         return e;
       };
       for (const T& h : steps) {
@@ -113,7 +113,7 @@ struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
                                                  "names the format)"));
       claim.series.push_back(std::move(series));
       nlohmann::json q_text = nlohmann::json::array(), p_text = nlohmann::json::array();
-      for (int i = 0; i < n; ++i) q_text.push_back(to_decimal<T>(x.q[i], 8)), p_text.push_back(to_decimal<T>(p[i], 8));
+      for (int i = 0; i < static_cast<int>(x.q.size()); ++i) q_text.push_back(to_decimal<T>(x.q[i], 8)), p_text.push_back(to_decimal<T>(p[i], 8));
       starts.push_back({{"t", to_decimal<T>(t, 8)}, {"q", q_text}, {"p", p_text}});
     }
     claim.evidence["map"] = map_words;

@@ -33,22 +33,22 @@ struct ModifiedEnergyClaim : Claim<ModifiedEnergyClaim> {
     return 4;
   }
 
-  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  template <LagrangianSystem System, class T = typename System::Scalar, int N = System::dimension>
   static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     using std::abs;
     using std::max;
     // The form of L checked along the motion: the initial and final states, their mixtures and
     // reversals, and the state at T/2 of the reference flow.
-    const State<T, n>& x0 = context.initial;
-    const State<T, n>& xT = context.final_state;
-    const std::vector<State<T, n>> samples = {
+    const State<T, N>& x0 = context.initial;
+    const State<T, N>& xT = context.final_state;
+    const std::vector<State<T, N>> samples = {
         x0,
         xT,
         context.exact(context.final_time / 2),
         {x0.q, xT.w},
         {xT.q, x0.w},
-        {x0.q, Vector<T, n>(-x0.w)},
-        {Vector<T, n>((x0.q + xT.q) / 2), Vector<T, n>((x0.w + xT.w) / 2)}};
+        {x0.q, Vector<T, N>(-x0.w)},
+        {Vector<T, N>((x0.q + xT.q) / 2), Vector<T, N>((x0.w + xT.w) / 2)}};
     if (const std::string why = modified_energy_inapplicable(context.spec); !why.empty())
       throw ClaimNotApplicable(why);
     if (const std::string defect = unit_mass_defect(context.system, samples); !defect.empty())
@@ -60,13 +60,13 @@ struct ModifiedEnergyClaim : Claim<ModifiedEnergyClaim> {
     std::vector<EnergyDrift<T>> drifts;
     nlohmann::json against_t = nlohmann::json::array();  // |H̃_k − H̃_0| against t, per h
     visit_trajectories(context, "modified-energy: H and H̃", [&](const T& h, const auto& q) {
-      const int N = static_cast<int>(q.size()) - 1;
+      const int steps = static_cast<int>(q.size()) - 1;
       T H0 = 0, modified0 = 0, largest_H = 0, largest_modified = 0, size = 0;
       std::vector<T> modified;
-      std::vector<Vector<T, n>> velocities;  // w = p for L = ½|w|² − U(q)
+      std::vector<Vector<T, N>> velocities;  // w = p for L = ½|w|² − U(q)
       const auto momenta = trajectory_momenta(context, q, h);
-      for (int k = 0; k < N; ++k) {
-        const Vector<T, n>& p = (*momenta)[k];
+      for (int k = 0; k < steps; ++k) {
+        const Vector<T, N>& p = (*momenta)[k];
         const ModifiedEnergy<T> E = modified_energy(context.system, form, q[k], p, h);
         if (k == 0) H0 = E.H, modified0 = E.modified;
         largest_H = nan_max(largest_H, T(abs(T(E.H - H0))));
@@ -77,7 +77,7 @@ struct ModifiedEnergyClaim : Claim<ModifiedEnergyClaim> {
       }
       energy_error.push_back(largest_H);
       modified_error.push_back(largest_modified);
-      drifts.push_back(measure_energy_drift<T, n>(h, modified, velocities, size));
+      drifts.push_back(measure_energy_drift<T, N>(h, modified, velocities, size));
       against_t.push_back(energy_error_against_t(h, modified));
     });
     claim.evidence["rule"] = rule_name(context.scheme.future.rule);

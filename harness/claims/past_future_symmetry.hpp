@@ -32,7 +32,7 @@ struct PastFutureSymmetryClaim : Claim<PastFutureSymmetryClaim> {
     return ContactOrderClaim::mutual_order(context);
   }
 
-  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  template <LagrangianSystem System, class T = typename System::Scalar, int N = System::dimension>
   static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     using std::max;
     const auto& first_future = *context.tq;
@@ -44,20 +44,20 @@ struct PastFutureSymmetryClaim : Claim<PastFutureSymmetryClaim> {
     nlohmann::json rows = nlohmann::json::array();
     for (const T& h : context.steps()) {
       context.report("past-future-symmetry at h = " + to_decimal<T>(h, 6));
-      const Vector<T, n> q_minus = context.initial.q;
-      const Vector<T, n> q_plus = context.exact(T(2 * h)).q;
+      const Vector<T, N> q_minus = context.initial.q;
+      const Vector<T, N> q_plus = context.exact(T(2 * h)).q;
       auto one = tq_critical_pair(context.system, first_past, first_future, q_minus, q_plus, h);
       require_converged(one.report, "first critical pair at h = " + to_decimal<T>(h, 17));
       auto two = tq_critical_pair(context.system, second, second, q_minus, q_plus, h);
       require_converged(two.report, "second critical pair at h = " + to_decimal<T>(h, 17));
-      Vector<T, n> dw = two.v.w - one.v.w, dw_next = two.v_next.w - one.v_next.w;
-      difference.push_back(nan_max(max_norm<T, n>(dw), max_norm<T, n>(dw_next)));
-      asymmetry.push_back(max_norm<T, n>(Vector<T, n>(dw - dw_next)));
+      Vector<T, N> dw = two.v.w - one.v.w, dw_next = two.v_next.w - one.v_next.w;
+      difference.push_back(nan_max(max_norm<T, N>(dw), max_norm<T, N>(dw_next)));
+      asymmetry.push_back(max_norm<T, N>(Vector<T, N>(dw - dw_next)));
       rows.push_back({{"h", to_decimal<T>(h)},
-                      {"delta_w", to_decimal<T>(max_norm<T, n>(dw))},
-                      {"delta_w_next", to_decimal<T>(max_norm<T, n>(dw_next))},
-                      {"delta_q", to_decimal<T>(max_norm<T, n>(Vector<T, n>(two.v.q - one.v.q)))},
-                      {"delta_q_next", to_decimal<T>(max_norm<T, n>(Vector<T, n>(two.v_next.q - one.v_next.q)))}});
+                      {"delta_w", to_decimal<T>(max_norm<T, N>(dw))},
+                      {"delta_w_next", to_decimal<T>(max_norm<T, N>(dw_next))},
+                      {"delta_q", to_decimal<T>(max_norm<T, N>(Vector<T, N>(two.v.q - one.v.q)))},
+                      {"delta_q_next", to_decimal<T>(max_norm<T, N>(Vector<T, N>(two.v_next.q - one.v_next.q)))}});
     }
     claim.evidence["contact_order_r"] = r;
     claim.evidence["mismatched_first_pair"] = context.tq_past.has_value();

@@ -30,9 +30,9 @@ namespace vivv {
 
 // The case's system built anew from its case file at the current MPFR precision (a system
 // built at another precision keeps that precision's parameters).
-template <class T, int n>
-FormulaSystem<T, n> system_at_current_precision(const CaseSpec& spec, const FormulaSystem<T, n>&) {
-  return make_formula_system<T, n>(spec.formula ? *spec.formula : catalogue_twin(spec.system, spec.parameters));
+template <class T, int N>
+FormulaSystem<T, N> system_at_current_precision(const CaseSpec& spec, const FormulaSystem<T, N>&) {
+  return make_formula_system<T, N>(spec.formula ? *spec.formula : catalogue_twin(spec.system, spec.parameters));
 }
 
 template <LagrangianSystem System>
@@ -81,7 +81,7 @@ struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {
       {"float", 24}, {"double", 53}, {"long double (x87)", 64}, {"float128", 113}};
   static constexpr double format_window_bits = 8;
 
-  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  template <LagrangianSystem System, class T = typename System::Scalar, int N = System::dimension>
   static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     if constexpr (!is_mpfr_v<T>) {
       throw CaseError(context.spec.file, "claims", "precision-leak compares two MPFR precisions: it needs "
@@ -299,14 +299,14 @@ struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {
   static std::pair<typename System::Scalar, typename System::Scalar> relative_local_defect(
       const CaseContext<System>& context, const typename System::Scalar& h) {
     using T = typename System::Scalar;
-    constexpr int n = System::dimension;
+    constexpr int N = System::dimension;
     using std::max;
     const auto& system = context.system;
-    const State<T, n>& x0 = context.initial;
-    const State<T, n> exact = context.exact(h);
-    Vector<T, n> q1, p1;
+    const State<T, N>& x0 = context.initial;
+    const State<T, N> exact = context.exact(h);
+    Vector<T, N> q1, p1;
     if (context.map) {
-      const State<T, n> x1 = context.map->step(x0, h);
+      const State<T, N> x1 = context.map->step(x0, h);
       q1 = x1.q, p1 = momentum(system, x1.q, x1.w);
     } else if (context.tq) {
       const auto step = tq_step(system, *context.tq, x0, h);
@@ -316,11 +316,11 @@ struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {
       q1 = start_from_momentum(system, context.scheme.future, x0.q, x0.w, h);
       p1 = p_end(system, context.scheme.future, x0.q, q1, h);
     }
-    const Vector<T, n> p0 = momentum(system, x0.q, x0.w), p_exact = momentum(system, exact.q, exact.w);
-    const T error = nan_max(max_norm<T, n>(q1 - exact.q), max_norm<T, n>(p1 - p_exact));
-    const T motion = nan_max(max_norm<T, n>(exact.q - x0.q), max_norm<T, n>(p_exact - p0));
+    const Vector<T, N> p0 = momentum(system, x0.q, x0.w), p_exact = momentum(system, exact.q, exact.w);
+    const T error = nan_max(max_norm<T, N>(q1 - exact.q), max_norm<T, N>(p1 - p_exact));
+    const T motion = nan_max(max_norm<T, N>(exact.q - x0.q), max_norm<T, N>(p_exact - p0));
     // One rounding of the answer, relative to the motion: ε·max(|q1|, |p1|)/motion.
-    const T size = nan_max(max_norm<T, n>(q1), max_norm<T, n>(p1));
+    const T size = nan_max(max_norm<T, N>(q1), max_norm<T, N>(p1));
     return {error / motion, epsilon<T>() * size / motion};
   }
 };

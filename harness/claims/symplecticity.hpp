@@ -35,38 +35,39 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
   // in double, a DEL whose two sides differ at O(h³).
   static constexpr int resolved = 4;
 
-  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  template <LagrangianSystem System, class T = typename System::Scalar, int N = System::dimension>
   static void measure(const CaseContext<System>& context, ClaimResult& claim) {
+    const int n = dimension_of(context.system);
     PerStepCheck<T> check;
     std::vector<T> units;  // the rounding unit of the judged (worst) step at each h
     std::vector<JacobianCheck> jacobian_checks;  // the judged step's Jacobian against its map
     if (context.map) {
       // A one-step map: its Jacobian by jets through its own code; no Hessian blocks to size.
       visit_map_trajectories(context, "symplecticity: Jacobians", [&](const T& h, const auto& x) {
-        std::vector<Matrix<T, 2 * n, 2 * n>> jacobians;
+        std::vector<Matrix<T, twice(N), twice(N)>> jacobians;
         std::vector<T> noise;  // each Jacobian's rounding in units of jacobian_unit(): 1, or measured
-        Vector<T, 2 * n> scale = Vector<T, 2 * n>::Zero();  // each coordinate's size along the run
+        Vector<T, twice(N)> scale = zero_vector<T, twice(N)>(2 * n);  // each coordinate's size along the run
         for (std::size_t k = 0; k + 1 < x.size(); ++k) {
           jacobians.push_back(context.map->jacobian(x[k], h));
           noise.push_back(context.map->last_jacobian_unit() / context.map->jacobian_unit());
-          scale = scale.cwiseMax(phase_size<T, n>(context, x[k].q, x[k].w, k, x.size() - 1));
+          scale = scale.cwiseMax(phase_size<T, N>(context, x[k].q, x[k].w, k, x.size() - 1));
         }
         std::size_t worst = 0;
-        units.push_back(judge<T, n>(check, h, jacobians, noise, context.map->jacobian_unit(), worst));
+        units.push_back(judge<T, N>(check, h, jacobians, noise, context.map->jacobian_unit(), worst));
         // The map on (q, p) itself: w from p by the inverse Legendre transform, one step, p' =
         // FL(q', w').
-        const State<T, n>& at = x[worst];
-        auto step = [&](const Vector<T, 2 * n>& y) {
-          State<T, n> from;
-          from.q = y.template head<n>();
-          from.w = velocity_for_momentum(context.system, from.q, Vector<T, n>(y.template tail<n>()),
+        const State<T, N>& at = x[worst];
+        auto step = [&](const Vector<T, twice(N)>& y) {
+          State<T, N> from;
+          from.q = y.head(n);
+          from.w = velocity_for_momentum(context.system, from.q, Vector<T, N>(y.tail(n)),
                                          at.w);
-          const State<T, n> to = context.map->step(from, h);
-          Vector<T, 2 * n> out;
+          const State<T, N> to = context.map->step(from, h);
+          Vector<T, twice(N)> out(2 * n);
           out << to.q, momentum(context.system, to.q, to.w);
           return out;
         };
-        Vector<T, 2 * n> y;
+        Vector<T, twice(N)> y(2 * n);
         y << at.q, momentum(context.system, at.q, at.w);
         jacobian_checks.push_back(check_jacobian(h, worst, step, y, jacobians[worst], scale, context.working_epsilon()));
       });
@@ -80,45 +81,45 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
     } else {
       visit_trajectories(context, "symplecticity: Jacobians", [&](const T& h, const auto& q) {
         using std::max;
-        std::vector<Matrix<T, 2 * n, 2 * n>> jacobians;
+        std::vector<Matrix<T, twice(N), twice(N)>> jacobians;
         std::vector<T> sizes;
-        Vector<T, 2 * n> scale = Vector<T, 2 * n>::Zero();  // each coordinate's size along the run
+        Vector<T, twice(N)> scale = zero_vector<T, twice(N)>(2 * n);  // each coordinate's size along the run
         for (std::size_t k = 0; k + 1 < q.size(); ++k) {
           const auto future =
               discrete_legendre(context.system, context.scheme.future, q[k], q[k + 1], h);
           scale = scale.cwiseMax(
-              phase_size<T, n>(context, q[k], Vector<T, n>((q[k + 1] - q[k]) / h), k, q.size() - 1, &future.p_begin));
+              phase_size<T, N>(context, q[k], Vector<T, N>((q[k + 1] - q[k]) / h), k, q.size() - 1, &future.p_begin));
           // A matched scheme's past side is the same discretization at the same points: the same
           // numbers, not computed twice.
           const auto past =
               context.scheme.mismatched
                   ? discrete_legendre(context.system, context.scheme.past, q[k], q[k + 1], h)
                   : future;
-          jacobians.push_back(del_map_jacobian<T, n>(future, past));
-          sizes.push_back(nan_max({T(1), max_entry<T, n, n>(future.dp_begin_dq_b), max_entry<T, n, n>(future.dp_begin_dq_e),
-                               max_entry<T, n, n>(past.dp_end_dq_b), max_entry<T, n, n>(past.dp_end_dq_e)}));
+          jacobians.push_back(del_map_jacobian<T, N>(future, past));
+          sizes.push_back(nan_max({T(1), max_entry<T, N, N>(future.dp_begin_dq_b), max_entry<T, N, N>(future.dp_begin_dq_e),
+                               max_entry<T, N, N>(past.dp_end_dq_b), max_entry<T, N, N>(past.dp_end_dq_e)}));
         }
         std::size_t worst = 0;
-        units.push_back(judge<T, n>(check, h, jacobians, sizes, epsilon<T>(), worst));
+        units.push_back(judge<T, N>(check, h, jacobians, sizes, epsilon<T>(), worst));
         // The DEL's map on (q, p) itself: q' by Newton on p_begin[future](q, q') = p from the
         // trajectory's q_{k+1}, p' = p_end[past](q, q').
-        const Vector<T, n>& q_next = q[worst + 1];
-        auto step = [&](const Vector<T, 2 * n>& y) {
-          const Vector<T, n> from = y.template head<n>(), p = y.template tail<n>();
-          Vector<T, n> to = q_next;
-          auto report = newton_solve<T, n>(to, [&](const Vector<T, n>& x, Vector<T, n>& residual,
-                                                   Matrix<T, n, n>& jacobian) {
+        const Vector<T, N>& q_next = q[worst + 1];
+        auto step = [&](const Vector<T, twice(N)>& y) {
+          const Vector<T, N> from = y.head(n), p = y.tail(n);
+          Vector<T, N> to = q_next;
+          auto report = newton_solve<T, N>(to, [&](const Vector<T, N>& x, Vector<T, N>& residual,
+                                                   Matrix<T, N, N>& jacobian) {
             auto legendre = discrete_legendre(context.system, context.scheme.future, from, x, h);
             residual = legendre.p_begin - p;
             jacobian = legendre.dp_begin_dq_e;
           });
           require_converged(
               report, "symplecticity's check of its Jacobian: a DEL step from a perturbed (q, p)");
-          Vector<T, 2 * n> out;
+          Vector<T, twice(N)> out(2 * n);
           out << to, p_end(context.system, context.scheme.past, from, to, h);
           return out;
         };
-        Vector<T, 2 * n> y;
+        Vector<T, twice(N)> y(2 * n);
         y << q[worst], p_begin(context.system, context.scheme.future, q[worst], q_next, h);
         jacobian_checks.push_back(check_jacobian(h, worst, step, y, jacobians[worst], scale, context.working_epsilon()));
       });
@@ -182,11 +183,11 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
   // symplectic midpoint's Jacobian wrong (6.8e-8 against 7.3e-10 in long double).
   // The terms (a Hessian) at 64 steps spread over the run of `steps` steps, |p_i| at every step
   // (`p` the DEL's momentum at step k when given, else FL(q, w)).
-  template <class T, int n, LagrangianSystem System>
-  static Vector<T, 2 * n> phase_size(const CaseContext<System>& context, const Vector<T, n>& q,
-                                     const Vector<T, n>& w, std::size_t k, std::size_t steps,
-                                     const Vector<T, n>* p = nullptr) {
-    Vector<T, 2 * n> size;
+  template <class T, int N, LagrangianSystem System>
+  static Vector<T, twice(N)> phase_size(const CaseContext<System>& context, const Vector<T, N>& q,
+                                     const Vector<T, N>& w, std::size_t k, std::size_t steps,
+                                     const Vector<T, N>* p = nullptr) {
+    Vector<T, twice(N)> size(2 * q.size());
     const std::size_t stride = std::max<std::size_t>(1, steps / 64);
     if (k % stride != 0 && k + 1 != steps) {
       size << q.cwiseAbs(), (p ? *p : momentum(context.system, q, w)).cwiseAbs();
@@ -225,22 +226,23 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
   // rounding of the Jacobian's entries: ε, or a double program's differences'), the composition
   // against N times the largest of those times max(1, |J_N…J_1|)². Returns the rounding unit of
   // the step judged (the largest defect/tolerance) and sets `worst_step` to its index.
-  template <class T, int n>
+  template <class T, int N>
   static T judge(PerStepCheck<T>& check, const T& h,
-                 const std::vector<Matrix<T, 2 * n, 2 * n>>& jacobians, const std::vector<T>& sizes,
+                 const std::vector<Matrix<T, twice(N), twice(N)>>& jacobians, const std::vector<T>& sizes,
                  const T& unit, std::size_t& worst_step) {
     using std::max;
-    const int N = static_cast<int>(jacobians.size());
-    Matrix<T, 2 * n, 2 * n> composition = Matrix<T, 2 * n, 2 * n>::Identity();
+    const int steps = static_cast<int>(jacobians.size());
+    const int size = jacobians.empty() ? std::max(0, twice(N)) : static_cast<int>(jacobians.front().rows());
+    Matrix<T, twice(N), twice(N)> composition = Matrix<T, twice(N), twice(N)>::Identity(size, size);
     T worst_ratio = -1, worst_defect = 0, worst_tolerance = 0, largest_defect = 0, step_tolerance = 0;
-    for (int k = 0; k < N; ++k) {
+    for (int k = 0; k < steps; ++k) {
       composition = jacobians[k] * composition;
-      const T entry = nan_max(T(1), max_entry<T, 2 * n, 2 * n>(jacobians[k]));
+      const T entry = nan_max(T(1), max_entry<T, twice(N), twice(N)>(jacobians[k]));
       const T tolerance = ulps * unit * sizes[k] * entry * entry;
-      const T defect = symplecticity_defect<T, 2 * n>(jacobians[k]);
+      const T defect = symplecticity_defect<T, twice(N)>(jacobians[k]);
       const std::string where = "at h = " + format_scalar(h, 6) + ", step " + std::to_string(k) + " of " +
-                                std::to_string(N) + " (the Jacobian's largest entry " +
-                                format_scalar(max_entry<T, 2 * n, 2 * n>(jacobians[k]), 3) + ")";
+                                std::to_string(steps) + " (the Jacobian's largest entry " +
+                                format_scalar(max_entry<T, twice(N), twice(N)>(jacobians[k]), 3) + ")";
       require_finite(defect, where + " |JᵀΩJ − Ω|");
       require_finite(tolerance, where + " its tolerance");
       // An allowance of |Ω| = 1 or more would pass JᵀΩJ = 0: the identity cannot be measured at
@@ -256,15 +258,15 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
         worst_ratio = defect / tolerance, worst_defect = defect, worst_tolerance = tolerance,
         worst_step = static_cast<std::size_t>(k);
     }
-    const T composed = nan_max(T(1), max_entry<T, 2 * n, 2 * n>(composition));
-    const T composite_defect = symplecticity_defect<T, 2 * n>(composition);
-    const T composite_tolerance = T(N) * step_tolerance * composed * composed;
-    const std::string composite = "at h = " + format_scalar(h, 6) + " the " + std::to_string(N) +
+    const T composed = nan_max(T(1), max_entry<T, twice(N), twice(N)>(composition));
+    const T composite_defect = symplecticity_defect<T, twice(N)>(composition);
+    const T composite_tolerance = T(steps) * step_tolerance * composed * composed;
+    const std::string composite = "at h = " + format_scalar(h, 6) + " the " + std::to_string(steps) +
                                   "-step composition's ";
     require_finite(composite_defect, composite + "|JᵀΩJ − Ω|");
     require_finite(composite_tolerance, composite + "tolerance");
     check.add(h, worst_defect, worst_tolerance,
-              {{"N", N},
+              {{"N", steps},
                {"largest_step_defect", to_decimal<T>(largest_defect)},
                {"composite_defect", to_decimal<T>(composite_defect)},
                {"composite_tolerance", to_decimal<T>(composite_tolerance)},

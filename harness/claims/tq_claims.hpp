@@ -41,7 +41,7 @@ struct LocalOrderClaim : Claim<LocalOrderClaim> {
     return context.map_order() + 1;
   }
 
-  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  template <LagrangianSystem System, class T = typename System::Scalar, int N = System::dimension>
   static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     std::vector<T> error = measure_each_step(context, "order: local error", [&](const T& h) {
       return state_distance(tq_map(context, *context.tq, h), context.exact(h));
@@ -75,7 +75,7 @@ struct ContactOrderClaim : Claim<ContactOrderClaim> {
     return mutual_order(context) + 1;
   }
 
-  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  template <LagrangianSystem System, class T = typename System::Scalar, int N = System::dimension>
   static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     const int r = mutual_order(context);
     std::vector<T> difference = measure_each_step(context, "contact-order", [&](const T& h) {
@@ -100,7 +100,7 @@ struct QxQTQEquivalenceClaim : Claim<QxQTQEquivalenceClaim> {
       "Psi(v) = (d−(v), d+(v)), to working precision";
   static constexpr int compared_steps = 8;
 
-  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  template <LagrangianSystem System, class T = typename System::Scalar, int N = System::dimension>
   static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     using std::max;
     const auto& d = *context.tq;
@@ -113,14 +113,14 @@ struct QxQTQEquivalenceClaim : Claim<QxQTQEquivalenceClaim> {
       // The DEL from Psi(v_0) = (d−(v_0), d+(v_0)).
       auto v0 = tangent_point(states[0]);
       auto del = del_trajectory(context.system, matched_scheme(d.qxq),
-                                as_vector<T, n>(d_minus<T, n>(d, v0, h)), as_vector<T, n>(d_plus<T, n>(d, v0, h)),
+                                as_vector<T, N>(d_minus<T, N>(d, v0, h)), as_vector<T, N>(d_plus<T, N>(d, v0, h)),
                                 h, compared_steps + 1);
       T gap = 0, scale = 1;
       for (int k = 0; k <= compared_steps; ++k) {
         auto v = tangent_point(states[k]);
-        gap = nan_max(gap, max_norm<T, n>(as_vector<T, n>(d_minus<T, n>(d, v, h)) - del.q[k]));
-        gap = nan_max(gap, max_norm<T, n>(as_vector<T, n>(d_plus<T, n>(d, v, h)) - del.q[k + 1]));
-        scale = nan_max(scale, max_norm<T, n>(del.q[k]));
+        gap = nan_max(gap, max_norm<T, N>(as_vector<T, N>(d_minus<T, N>(d, v, h)) - del.q[k]));
+        gap = nan_max(gap, max_norm<T, N>(as_vector<T, N>(d_plus<T, N>(d, v, h)) - del.q[k + 1]));
+        scale = nan_max(scale, max_norm<T, N>(del.q[k]));
       }
       // Both evolutions round at each of their Newton solves (64 ulps each).
       check.add(h, gap, T(1024 * T(compared_steps) * epsilon<T>() * scale), {{"steps_compared", compared_steps}});
@@ -193,18 +193,18 @@ struct ExistenceUniquenessClaim : Claim<ExistenceUniquenessClaim> {
       const CaseContext<System>& context, const State<typename System::Scalar, System::dimension>& next,
       const typename System::Scalar& h) {
     using T = typename System::Scalar;
-    constexpr int n = System::dimension;
+    constexpr int N = System::dimension;
     using std::max, std::min;
-    const State<T, n>& v = context.initial;
+    const State<T, N>& v = context.initial;
     UniquenessProbe<T> probe;
-    const T size = nan_max(T(1), nan_max(max_norm<T, n>(v.q), max_norm<T, n>(v.w)));
+    const T size = nan_max(T(1), nan_max(max_norm<T, N>(v.q), max_norm<T, N>(v.w)));
     probe.tolerance = 1024 * epsilon<T>() * size / nan_min(T(1), h);
-    const T radius = (1 + max_norm<T, n>(v.w)) / 4;
+    const T radius = (1 + max_norm<T, N>(v.w)) / 4;
     NewtonOptions options;
     options.max_iterations = 30;
-    for (int j = 0; j < 2 * n; ++j)
+    for (int j = 0; j < 2 * static_cast<int>(v.q.size()); ++j)
       for (int sign : {-1, 1}) {
-        Vector<T, 2 * n> start = blown_up_identity(v);
+        Vector<T, twice(N)> start = blown_up_identity(v);
         start[j] += sign * radius;
         ++probe.starts;
         try {
@@ -219,7 +219,7 @@ struct ExistenceUniquenessClaim : Claim<ExistenceUniquenessClaim> {
     return probe;
   }
 
-  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  template <LagrangianSystem System, class T = typename System::Scalar, int N = System::dimension>
   static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     // F_h(v) − v over the sweep: order at least 1; at each h the critical point is unique near
     // the diagonal. Here a failed solve is the measured outcome, not bad input.
@@ -258,10 +258,10 @@ struct ExistenceUniquenessClaim : Claim<ExistenceUniquenessClaim> {
     using std::ldexp;
     nlohmann::json map = nlohmann::json::array();
     std::optional<T> zero_at;
-    State<T, n> v = context.initial;
-    if (max_norm<T, n>(v.w) == 0) v.w.setConstant(T(1));
+    State<T, N> v = context.initial;
+    if (max_norm<T, N>(v.w) == 0) v.w.setConstant(T(1));
     for (int level = 0; level < speed_levels; ++level) {
-      const T speed = max_norm<T, n>(v.w);
+      const T speed = max_norm<T, N>(v.w);
       context.report("existence-uniqueness: h_max at |w| = " + to_decimal<T>(speed));
       T largest = h_max(context, v);
       if (!(largest > 0) && !zero_at) zero_at = speed;

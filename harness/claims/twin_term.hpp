@@ -63,7 +63,7 @@ struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
       "trajectories with the twin term a·h^s·(end − begin) and without it are identical to "
       "working precision; both Legendre transforms shift by exactly a·h^s";
 
-  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  template <LagrangianSystem System, class T = typename System::Scalar, int N = System::dimension>
   static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     PerStepCheck<T> check;
     // The trajectory difference is the measured value; the Legendre shift is checked beside it.
@@ -85,7 +85,7 @@ struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
   template <LagrangianSystem System>
   static std::vector<TwinMeasurement<typename System::Scalar>> measure_qxq(const CaseContext<System>& context) {
     using T = typename System::Scalar;
-    constexpr int n = System::dimension;
+    constexpr int N = System::dimension;
     using std::max;
     DelScheme<T> plain{without_twin(context.scheme.future), without_twin(context.scheme.past),
                        context.scheme.mismatched};
@@ -96,17 +96,17 @@ struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
     std::vector<TwinMeasurement<T>> measured;
     for (std::size_t i = 0; i < steps.size(); ++i) {
       const T& h = steps[i];
-      int N = context.spec.steps[i];
+      int steps = context.spec.steps[i];
       T gap = 0, scale = 1;
-      for (int k = 0; k <= N; ++k) {
-        gap = nan_max(gap, max_norm<T, n>(with.trajectories[i]->q[k] - without.trajectories[i]->q[k]));
-        scale = nan_max(scale, max_norm<T, n>(with.trajectories[i]->q[k]));
+      for (int k = 0; k <= steps; ++k) {
+        gap = nan_max(gap, max_norm<T, N>(with.trajectories[i]->q[k] - without.trajectories[i]->q[k]));
+        scale = nan_max(scale, max_norm<T, N>(with.trajectories[i]->q[k]));
       }
       // The Legendre shift at the run's last segment: exact up to a few roundings.
       const auto& q = without.trajectories[i]->q;
-      auto shifted = discrete_legendre(context.system, context.scheme.future, q[N - 1], q[N], h);
-      auto plain_legendre = discrete_legendre(context.system, plain.future, q[N - 1], q[N], h);
-      measured.push_back(twin_measurement(N, h, gap, scale, shifted.p_begin, plain_legendre.p_begin,
+      auto shifted = discrete_legendre(context.system, context.scheme.future, q[steps - 1], q[steps], h);
+      auto plain_legendre = discrete_legendre(context.system, plain.future, q[steps - 1], q[steps], h);
+      measured.push_back(twin_measurement(steps, h, gap, scale, shifted.p_begin, plain_legendre.p_begin,
                                           shifted.p_end, plain_legendre.p_end, twin));
     }
     return measured;
@@ -118,7 +118,7 @@ struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
   template <LagrangianSystem System>
   static std::vector<TwinMeasurement<typename System::Scalar>> measure_tq(const CaseContext<System>& context) {
     using T = typename System::Scalar;
-    constexpr int n = System::dimension;
+    constexpr int N = System::dimension;
     using std::max;
     const TQDiscretization<T>& with = *context.tq;
     const TQDiscretization<T>& with_past = context.tq_past ? *context.tq_past : with;
@@ -129,23 +129,23 @@ struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
     std::vector<TwinMeasurement<T>> measured;
     for (std::size_t i = 0; i < steps.size(); ++i) {
       const T& h = steps[i];
-      int N = context.spec.steps[i];
-      context.report("twin-term-invariance: " + std::to_string(N) + " TQ steps with and without the twin term");
+      int steps = context.spec.steps[i];
+      context.report("twin-term-invariance: " + std::to_string(steps) + " TQ steps with and without the twin term");
       // With the twin term and no past_discretization this is the case's own TQ sweep.
       const auto a = context.tq_past
-                         ? std::make_shared<const std::vector<State<T, n>>>(tq_trajectory(
-                               context.system, with_past, with, context.initial, h, N))
-                         : shared_tq_trajectory(context, h, N);
-      const auto b = tq_trajectory(context.system, plain, context.initial, h, N);
+                         ? std::make_shared<const std::vector<State<T, N>>>(tq_trajectory(
+                               context.system, with_past, with, context.initial, h, steps))
+                         : shared_tq_trajectory(context, h, steps);
+      const auto b = tq_trajectory(context.system, plain, context.initial, h, steps);
       T gap = 0, scale = 1;
-      for (int k = 0; k <= N; ++k) {
+      for (int k = 0; k <= steps; ++k) {
         gap = nan_max(gap, state_distance((*a)[k], b[k]));
-        scale = nan_max(scale, nan_max(max_norm<T, n>((*a)[k].q), max_norm<T, n>((*a)[k].w)));
+        scale = nan_max(scale, nan_max(max_norm<T, N>((*a)[k].q), max_norm<T, N>((*a)[k].w)));
       }
-      auto v = tangent_point(b[N]);
+      auto v = tangent_point(b[steps]);
       auto shifted = tq_legendre(context.system, with, v, h);
       auto plain_legendre = tq_legendre(context.system, plain, v, h);
-      measured.push_back(twin_measurement(N, h, gap, scale, shifted.p_minus, plain_legendre.p_minus,
+      measured.push_back(twin_measurement(steps, h, gap, scale, shifted.p_minus, plain_legendre.p_minus,
                                           shifted.p_plus, plain_legendre.p_plus, twin));
     }
     return measured;
@@ -199,7 +199,7 @@ struct MismatchedLegendreClaim : Claim<MismatchedLegendreClaim> {
     const int r = context.map_order();
     const bool same = same_rule(future, past);
     int order = same ? r : r - 1;
-    auto mismatch = twin_mismatch(future.twin, past.twin, System::dimension);
+    auto mismatch = twin_mismatch(future.twin, past.twin, dimension_of(context.system));
     if (mismatch.power) order = std::min(order, *mismatch.power - 1);
     return std::max(order, 0);
   }
@@ -212,20 +212,20 @@ struct MismatchedLegendreClaim : Claim<MismatchedLegendreClaim> {
     return order;
   }
 
-  template <LagrangianSystem System, class T = typename System::Scalar, int n = System::dimension>
+  template <LagrangianSystem System, class T = typename System::Scalar, int N = System::dimension>
   static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     const auto& future = context.scheme.future;
     const auto& past = context.scheme.past;
     const bool same = same_rule(future, past);
-    const auto mismatch = twin_mismatch(future.twin, past.twin, n);
+    const auto mismatch = twin_mismatch(future.twin, past.twin, dimension_of(context.system));
     const int order = mismatch_order(context);
     claim.evidence["predicted_order_vs_original"] = order;
     claim.evidence["same_rule"] = same;
     claim.evidence["twin_mismatch_power"] = mismatch.power ? nlohmann::json(*mismatch.power) : nlohmann::json();
     SweepRun<System> run = run_sweep(context, context.scheme);
-    const State<T, n>& final_state = context.final_state;
+    const State<T, N>& final_state = context.final_state;
     std::vector<T> error;
-    for (const auto& q : run.q_final) error.push_back(max_norm<T, n>(q - final_state.q));
+    for (const auto& q : run.q_final) error.push_back(max_norm<T, N>(q - final_state.q));
     if (order >= 1) {
       claim.series.push_back(sweep_series(context, "|q_N − q(T)| (original equation)", error, predicted(context)));
       conclude(claim);
@@ -249,7 +249,7 @@ struct MismatchedLegendreClaim : Claim<MismatchedLegendreClaim> {
     // the higher powers of the mismatch perturb the force by O(h).
     ForceShifted<System> modified{context.system, {}};
     nlohmann::json shift = nlohmann::json::array();
-    for (int i = 0; i < n; ++i) {
+    for (int i = 0; i < dimension_of(context.system); ++i) {
       modified.c.push_back(mismatch.coefficient[i]);
       shift.push_back(to_decimal<T>(modified.c.back()));
     }
@@ -258,11 +258,11 @@ struct MismatchedLegendreClaim : Claim<MismatchedLegendreClaim> {
     context.report("mismatched-legendre: modified reference flow");
     TaylorReference<ForceShifted<System>> modified_flow(
         modified, reference_tolerance_for<T>(context.spec.digits));
-    State<T, n> modified_final = modified_flow.advance(context.initial, context.final_time);
+    State<T, N> modified_final = modified_flow.advance(context.initial, context.final_time);
     claim.evidence["modified_solution_q_T"] = to_decimal<T>(modified_final.q[0]);
     claim.evidence["original_solution_q_T"] = to_decimal<T>(final_state.q[0]);
     std::vector<T> modified_error;
-    for (const auto& q : run.q_final) modified_error.push_back(max_norm<T, n>(q - modified_final.q));
+    for (const auto& q : run.q_final) modified_error.push_back(max_norm<T, N>(q - modified_final.q));
     // The convergence to the modified solution is the claim's main measurement.
     claim.series.insert(claim.series.begin(),
                         sweep_series(context, "|q_N − q_mod(T)| (modified equation)", modified_error,

@@ -207,12 +207,12 @@ T reference_tolerance_for(int digits) {
 // estimate_error(v, T) of the reference from an independent check may reach
 // (tolerance + the check's own tolerance)·(1 + |F_T(v)|_max), the max-norm form
 // of |error_i| <= tolerance·(1 + |y_i|) for each of the two.
-template <class Reference, class T, int n>
-ReferenceCheck check_reference(const Reference& reference, const State<T, n>& initial, const T& final_time) {
+template <class Reference, class T, int N>
+ReferenceCheck check_reference(const Reference& reference, const State<T, N>& initial, const T& final_time) {
   using std::max;
-  const State<T, n> end = reference.advance(initial, final_time);
+  const State<T, N> end = reference.advance(initial, final_time);
   const T allowed = (reference.tolerance() + reference.check_tolerance()) *
-                    (1 + max(max_norm<T, n>(end.q), max_norm<T, n>(end.w)));
+                    (1 + max(max_norm<T, N>(end.q), max_norm<T, N>(end.w)));
   const T estimate = reference.estimate_error(initial, final_time);
   return {to_decimal<T>(reference.tolerance()), to_decimal<T>(estimate), to_decimal<T>(allowed),
           estimate <= allowed};
@@ -242,20 +242,21 @@ struct OrderPrediction {
 template <LagrangianSystem System>
 struct CaseContext {
   using T = typename System::Scalar;
-  static constexpr int n = System::dimension;
+  static constexpr int N = System::dimension;
 
   const CaseSpec& spec;
   System system;
+  int n;  // the system's coordinates (N, or its run-time size)
   // Closed forms where they exist, the Taylor-series flow otherwise.
   std::conditional_t<has_closed_form_v<System>, ReferenceFlow<System>, TaylorReference<System>> reference;
-  State<T, n> initial;
+  State<T, N> initial;
   T final_time;
-  State<T, n> final_state;  // the reference state at final_time, computed once
+  State<T, N> final_state;  // the reference state at final_time, computed once
   DelScheme<T> scheme;                    // formalism "qxq"
   std::optional<TQDiscretization<T>> tq;  // formalism "tq"
   std::optional<TQDiscretization<T>> tq_compare;  // contact-order's second discretization
   std::optional<TQDiscretization<T>> tq_past;     // past-future-symmetry: a mismatched past segment
-  std::shared_ptr<const OneStepMap<T, n>> map;    // formalism "map": another library's stepper
+  std::shared_ptr<const OneStepMap<T, N>> map;    // formalism "map": another library's stepper
   double order_tolerance;
   FitOptions fit_options;  // --refine tightens the asymptotic range (harness/run/run_case.cpp)
   std::function<void(const std::string&)> progress;
@@ -263,21 +264,23 @@ struct CaseContext {
   // energy-behaviour, symplecticity, discrete-noether, modified-energy, twin-term-invariance): the
   // DEL trajectories of `scheme`, the one-step map's states and the TQ evolution's
   // (harness/claims/global_order.hpp, run_sweep).
-  mutable std::map<int, std::shared_ptr<const DelTrajectory<T, n>>> del_runs;
+  mutable std::map<int, std::shared_ptr<const DelTrajectory<T, N>>> del_runs;
   // p_begin along each kept DEL trajectory (trajectory_momenta in harness/claims/global_order.hpp).
-  mutable std::map<int, std::shared_ptr<const std::vector<Vector<T, n>>>> del_momenta;
+  mutable std::map<int, std::shared_ptr<const std::vector<Vector<T, N>>>> del_momenta;
   // What each N's run (the case's DEL, map or TQ evolution) cost: L evaluations and seconds.
   mutable std::map<int, RunCost> run_costs;
-  mutable std::map<int, std::shared_ptr<const std::vector<State<T, n>>>> map_runs;
-  mutable std::map<int, std::shared_ptr<const std::vector<State<T, n>>>> tq_runs;  // formalism "tq"
+  mutable std::map<int, std::shared_ptr<const std::vector<State<T, N>>>> map_runs;
+  mutable std::map<int, std::shared_ptr<const std::vector<State<T, N>>>> tq_runs;  // formalism "tq"
 
   CaseContext(const CaseSpec& spec_, System system_, std::function<void(const std::string&)> progress_)
       : spec(spec_),
         system(system_),
+        n(dimension_of(system_)),
         reference(system_, reference_tolerance_for<T>(spec_.digits)),
         final_time(from_decimal<T>(spec_.final_time)),
         order_tolerance(std::stod(spec_.order_tolerance)),
         progress(std::move(progress_)) {
+    initial = {zero_vector<T, N>(n), zero_vector<T, N>(n)};
     for (int i = 0; i < n; ++i) {
       initial.q[i] = from_decimal<T>(spec.q[i]);
       initial.w[i] = from_decimal<T>(spec.w[i]);
@@ -307,14 +310,14 @@ struct CaseContext {
 
   // A state of the run for a message: the initial state as the case file writes it, another with
   // 6 significant digits.
-  std::string where_sampled(const State<T, n>& x) const {
+  std::string where_sampled(const State<T, N>& x) const {
     if (x.q == initial.q && x.w == initial.w) {
       std::string q, w;
       for (std::size_t i = 0; i < spec.q.size(); ++i) q += (i ? ", " : "") + spec.q[i];
       for (std::size_t i = 0; i < spec.w.size(); ++i) w += (i ? ", " : "") + spec.w[i];
       return "the initial state q = (" + q + "), w = (" + w + ")";
     }
-    return "q = " + to_decimal_tuple<T, n>(x.q, 6) + ", w = " + to_decimal_tuple<T, n>(x.w, 6) +
+    return "q = " + to_decimal_tuple<T, N>(x.q, 6) + ", w = " + to_decimal_tuple<T, N>(x.w, 6) +
            (x.q == final_state.q && x.w == final_state.w
                 ? " (the reference's state at T)"
                 : " (a mixture of the initial state and the reference's at T)");
@@ -322,9 +325,9 @@ struct CaseContext {
 
   // The odeint stepper of the case on the system's separable form, after checking that L is
   // ½ wᵀ M w − V(q) with M constant at the initial and final states and their two mixtures.
-  std::shared_ptr<const OneStepMap<T, n>> make_map() const {
+  std::shared_ptr<const OneStepMap<T, N>> make_map() const {
     if (spec.discretization.kind == "process") return make_process_map();
-    std::vector<State<T, n>> samples = {initial, final_state, {initial.q, final_state.w}, {final_state.q, initial.w}};
+    std::vector<State<T, N>> samples = {initial, final_state, {initial.q, final_state.w}, {final_state.q, initial.w}};
     if (auto defect = separability_defect(system, samples))
       throw CaseError(
           spec.file,
@@ -335,8 +338,8 @@ struct CaseContext {
               defect->quantity + " = " + format_scalar(defect->size, 3) + " at " +
               where_sampled(defect->at));
     if (spec.discretization.kind == "odeint")
-      return make_odeint_map<T, n>(spec.discretization.stepper, separable_form(system, initial));
-    const auto& factories = map_factories<T, n>();
+      return make_odeint_map<T, N>(spec.discretization.stepper, separable_form(system, initial));
+    const auto& factories = map_factories<T, N>();
     const auto factory = factories.find(spec.discretization.stepper);
     if (factory == factories.end())
       throw CaseError(spec.file, "discretization.name",
@@ -346,7 +349,7 @@ struct CaseContext {
   }
 
   // The case's map in another program (kind "process"), started only where the run allows it.
-  std::shared_ptr<const OneStepMap<T, n>> make_process_map() const {
+  std::shared_ptr<const OneStepMap<T, N>> make_process_map() const {
     const DiscretizationSpec& d = spec.discretization;
     if (!d.process_allowed) {  // a run that did not call permit_process (harness/process/program.hpp)
       CaseSpec refused = spec;
@@ -365,8 +368,8 @@ struct CaseContext {
     // The orbit's size, by which an answer far beyond it is a divergence (ProcessMap).
     using std::abs, std::max;
     T orbit_size = 0;
-    for (const State<T, n>& x : {initial, final_state}) {
-      const Vector<T, n> p = momentum(system, x.q, x.w);
+    for (const State<T, N>& x : {initial, final_state}) {
+      const Vector<T, N> p = momentum(system, x.q, x.w);
       for (int i = 0; i < n; ++i) orbit_size = max({orbit_size, T(abs(x.q[i])), T(abs(p[i]))});
     }
     return std::make_shared<ProcessMap<System>>(system, options, system_json, d.declared_order,
@@ -411,7 +414,7 @@ struct CaseContext {
   // floors() keeps the two apart (harness/verdicts/order_fit.hpp, Floor).
   Floor<T> floors() const {
     using std::max;
-    const T scale = max(T(1), max(max_norm<T, n>(initial.q), max_norm<T, n>(initial.w)));
+    const T scale = max(T(1), max(max_norm<T, N>(initial.q), max_norm<T, N>(initial.w)));
     const T steps = T(spec.steps.back());
     return {1000 * steps * working_epsilon() * scale, 1000 * reference.tolerance() * scale,
             static_cast<long double>(scale), static_cast<long double>(spec.steps.back()),
@@ -440,11 +443,11 @@ struct CaseContext {
   }
 
   // Reference state F_t(initial).
-  State<T, n> exact(const T& t) const { return reference.advance(initial, t); }
+  State<T, N> exact(const T& t) const { return reference.advance(initial, t); }
 
   // q_0, q_1 for N steps: q_1 from the reference flow (isolating the
   // method's own error) or from p_begin(q_0, q_1) = p(0).
-  std::pair<Vector<T, n>, Vector<T, n>> start(const DelScheme<T>& with, const T& h) const {
+  std::pair<Vector<T, N>, Vector<T, N>> start(const DelScheme<T>& with, const T& h) const {
     if (spec.start == "momentum")
       return {initial.q, start_from_momentum(system, with.future, initial.q, initial.w, h)};
     return {initial.q, exact(h).q};

@@ -58,15 +58,16 @@
 namespace vivv {
 
 // Registers `method` under `name`, with the order r its authors state (|Φ_h − F_h| = O(h^{r+1})),
-// for every scalar and dimension vivv runs: MPFR for 1 to 4 coordinates, double, long double
-// and float128 for 1 and 2. The same method again under its name is a no-op; another under a
+// for every scalar and any number of coordinates. A method written for std::array<S, n> runs on
+// systems of 1 to 4 coordinates; one written for any container with size() and [] (it is given
+// std::vector<S> beyond 2) runs on any. The same method again under its name is a no-op; another under a
 // taken name, or one of odeint's, is refused.
 template <class Method>
 void register_map(const std::string& name, int order, Method method = {});
 
 // Registers a Lagrangian system written as C++ code, for any scalar S:
 //   struct MySystem {
-//     static constexpr int dimension = 1;                 // 1 to 4 (1 or 2 outside MPFR)
+//     static constexpr int dimension = 1;                 // any number of coordinates
 //     static std::vector<std::pair<std::string, std::string>> parameters();  // name, default
 //     template <class S, class Parameter>                 // parameter("k") is k in S
 //     S lagrangian(const std::array<S, dimension>& q, const std::array<S, dimension>& w,
@@ -232,16 +233,15 @@ void register_map(const std::string& name, int order, Method method) {
       return std::shared_ptr<const OneStepMap<T, n>>(std::make_shared<const UserMap<Method, T, n>>(info, method, system));
     };
   };
-  add.template operator()<mpfr_real, 1>();
-  add.template operator()<mpfr_real, 2>();
-  add.template operator()<mpfr_real, 3>();
-  add.template operator()<mpfr_real, 4>();
-  add.template operator()<double, 1>();
-  add.template operator()<double, 2>();
-  add.template operator()<long double, 1>();
-  add.template operator()<long double, 2>();
-  add.template operator()<quad, 1>();
-  add.template operator()<quad, 2>();
+  auto add_sizes = [&]<class T>() {
+    add.template operator()<T, 1>();
+    add.template operator()<T, 2>();
+    add.template operator()<T, any_size>();
+  };
+  add_sizes.template operator()<double>();
+  add_sizes.template operator()<long double>();
+  add_sizes.template operator()<quad>();
+  add_sizes.template operator()<mpfr_real>();
   registered_maps().push_back(info);
   detail::remember_registration("register_map", name, method, order);
 }
@@ -249,7 +249,7 @@ void register_map(const std::string& name, int order, Method method) {
 template <class System>
 void register_system(const std::string& name, System system) {
   constexpr int n = System::dimension;
-  static_assert(n >= 1 && n <= 4, "vivv runs systems of 1 to 4 coordinates");
+  static_assert(n >= 1, "a system has at least one coordinate");
   if (detail::registered_before("register_system", name, system, 0)) return;
   detail::check_new_name("register_system", name, system_names());
   auto recorder = detail::per_scalar<SystemRecorder>([&]<class T>() -> SystemRecorder<T> {
@@ -275,13 +275,22 @@ void register_discrete_lagrangian(const std::string& name, int order, Rule rule)
   detail::check_new_name("register_discrete_lagrangian", name, taken);
   if (order < 1) throw std::invalid_argument("register_discrete_lagrangian: '" + name + "' needs an order of at least 1");
   auto recorder = detail::per_scalar<DiscreteLagrangianRecorder>([&]<class T>() -> DiscreteLagrangianRecorder<T> {
-    return [rule](const TapeVector<T>& qb, const TapeVector<T>& qe, const TapeScalar<T>& h,
+    return [rule, name](const TapeVector<T>& qb, const TapeVector<T>& qe, const TapeScalar<T>& h,
                   const std::function<TapeScalar<T>(const TapeVector<T>&, const TapeVector<T>&)>& lagrangian) {
+      using V = TapeScalar<T>;
+      // A rule written for any container gets std::vector; one written for std::array<S, n> gets
+      // arrays of 1 to 4 coordinates.
+      if constexpr (requires { V(rule.discrete_lagrangian(qb, qe, h, lagrangian)); })
+        return V(rule.discrete_lagrangian(qb, qe, h, lagrangian));
       switch (qb.size()) {
         case 1: return detail::record_rule<1>(rule, qb, qe, h, lagrangian);
         case 2: return detail::record_rule<2>(rule, qb, qe, h, lagrangian);
         case 3: return detail::record_rule<3>(rule, qb, qe, h, lagrangian);
-        default: return detail::record_rule<4>(rule, qb, qe, h, lagrangian);
+        case 4: return detail::record_rule<4>(rule, qb, qe, h, lagrangian);
+        default:
+          throw std::invalid_argument("the discrete Lagrangian '" + name + "' is written for std::array<S, n>: a system of " +
+                                      std::to_string(qb.size()) +
+                                      " coordinates passes std::vector<S> (write discrete_lagrangian for any container)");
       }
     };
   });

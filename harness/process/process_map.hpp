@@ -41,7 +41,7 @@ namespace vivv {
 template <LagrangianSystem System>
 class ProcessMap final : public OneStepMap<typename System::Scalar, System::dimension> {
   using T = typename System::Scalar;
-  static constexpr int n = System::dimension;
+  static constexpr int N = System::dimension;
 
  public:
   // `system_json`: the system as the case file gives it, every parameter filled in;
@@ -51,6 +51,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   ProcessMap(System system, MapProcess::Options options, nlohmann::json system_json, int order,
              const T& orbit_size, bool double_program = false)
       : system_(std::move(system)),
+        n(dimension_of(system_)),
         options_(std::move(options)),
         system_json_(std::move(system_json)),
         order_(order),
@@ -108,10 +109,10 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   T last_jacobian_unit() const override { return last_unit_; }
   // The same measurement of a double program's noise at x for local-order's floor (the last one
   // kept: the floor is asked for at the same state and h more than once).
-  std::optional<T> answer_noise(const State<T, n>& x, const T& h) const override {
+  std::optional<T> answer_noise(const State<T, N>& x, const T& h) const override {
     if (!double_program_) return std::nullopt;
-    const Vector<T, n> p = momentum_at(x);
-    std::array<std::string, 2 * n> y;
+    const Vector<T, N> p = momentum_at(x);
+    std::vector<std::string> y(2 * n);
     for (int i = 0; i < n; ++i) y[i] = to_decimal<T>(x.q[i]), y[n + i] = to_decimal<T>(p[i]);
     std::string key = to_decimal<T>(h);
     for (const std::string& v : y) key += " " + v;
@@ -123,8 +124,8 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     return noise_;
   }
 
-  State<T, n> step(const State<T, n>& x, const T& h) const override {
-    const Vector<T, n> p = momentum_at(x);
+  State<T, N> step(const State<T, N>& x, const T& h) const override {
+    const Vector<T, N> p = momentum_at(x);
     nlohmann::json request = {
         {"h", to_decimal<T>(h)}, {"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
     for (int i = 0; i < n; ++i) {
@@ -132,8 +133,8 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
       request["p"].push_back(to_decimal<T>(p[i]));
     }
     const nlohmann::json answer = process_->request(request);
-    State<T, n> next;
-    Vector<T, n> p_next;
+    State<T, N> next{Vector<T, N>(n), Vector<T, N>(n)};
+    Vector<T, N> p_next(n);
     for (int i = 0; i < n; ++i) {
       next.q[i] = number<T>(*process_, answer, "q", i, digits_);
       p_next[i] = number<T>(*process_, answer, "p", i, digits_);
@@ -147,10 +148,10 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     return next;
   }
 
-  Matrix<T, 2 * n, 2 * n> jacobian(const State<T, n>& x, const T& h) const override {
+  Matrix<T, twice(N), twice(N)> jacobian(const State<T, N>& x, const T& h) const override {
     const long step_index = next_jacobian_step(h);
-    const Vector<T, n> p = momentum_at(x);
-    std::array<std::string, 2 * n> y;
+    const Vector<T, N> p = momentum_at(x);
+    std::vector<std::string> y(2 * n);
     for (int i = 0; i < n; ++i) y[i] = to_decimal<T>(x.q[i]), y[n + i] = to_decimal<T>(p[i]);
     const std::string step = to_decimal<T>(h);
     last_unit_ = jacobian_unit();
@@ -165,7 +166,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
       PrecisionGuard guard(digits_ + 30);
       const auto narrow = differences(*process_, digits_, step, y, double_exponent(), h);
       const auto wide = differences(*process_, digits_, step, y, double_exponent(), h, 2);
-      Differences extrapolated;
+      Differences extrapolated(2 * n, std::vector<R>(2 * n));
       R largest = 1;
       for (int j = 0; j < 2 * n; ++j)
         for (int i = 0; i < 2 * n; ++i)
@@ -182,7 +183,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     } else {
       columns = fine_differences(y, step, h);
     }
-    Matrix<T, 2 * n, 2 * n> jacobian;
+    Matrix<T, twice(N), twice(N)> jacobian(2 * n, 2 * n);
     for (int i = 0; i < 2 * n; ++i)
       for (int j = 0; j < 2 * n; ++j) jacobian(i, j) = from_decimal<T>(columns[j][i]);
     return jacobian;
@@ -193,21 +194,21 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
 
  private:
   using R = mpfr_real;
-  using Differences = std::array<std::array<R, 2 * n>, 2 * n>;      // [j][i] = ∂y'_i/∂y_j
-  using Columns = std::array<std::array<std::string, 2 * n>, 2 * n>;  // the same, as decimals
+  using Differences = std::vector<std::vector<R>>;      // [j][i] = ∂y'_i/∂y_j
+  using Columns = std::vector<std::vector<std::string>>;  // the same, as decimals
 
   // Central differences of one step of `process` (answering with `digits` digits) at y and step
   // size `step`, width 10^(−exponent)·max(1, |y_j|), column by column, in MPFR at the caller's
   // PrecisionGuard.
   Differences differences(MapProcess& process, int digits, const std::string& step,
-                          const std::array<std::string, 2 * n>& y, int exponent, const T& h,
+                          const std::vector<std::string>& y, int exponent, const T& h,
                           int multiple = 1) const {
     using std::abs, std::max, std::pow;
-    Differences result;
+    Differences result(2 * n, std::vector<R>(2 * n));
     for (int j = 0; j < 2 * n; ++j) {
       const R yj = from_decimal<R>(y[j]);
       const R delta = multiple * pow(R(10), -exponent) * max(R(1), R(abs(yj)));
-      std::array<std::array<R, 2 * n>, 2> images;
+      std::array<std::vector<R>, 2> images{std::vector<R>(2 * n), std::vector<R>(2 * n)};
       for (int side = 0; side < 2; ++side) {
         nlohmann::json request = {
             {"h", step}, {"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
@@ -227,15 +228,15 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     return result;
   }
   static Columns decimals(const Differences& d) {
-    Columns columns;
-    for (int j = 0; j < 2 * n; ++j)
-      for (int i = 0; i < 2 * n; ++i) columns[j][i] = to_decimal<R>(d[j][i]);
+    Columns columns(d.size(), std::vector<std::string>(d.size()));
+    for (std::size_t j = 0; j < d.size(); ++j)
+      for (std::size_t i = 0; i < d.size(); ++i) columns[j][i] = to_decimal<R>(d[j][i]);
     return columns;
   }
 
   // The Jacobian by differences of a second instance at D₂ = 2D + 10 digits; the first and every
   // `recheck`-th are computed again at ten times the width and at a coarse width (padded digits).
-  Columns fine_differences(const std::array<std::string, 2 * n>& y, const std::string& step,
+  Columns fine_differences(const std::vector<std::string>& y, const std::string& step,
                            const T& h) const {
     if (!fine_) fine_ = start(fine_digits());
     const std::string epsilon_of_T = to_decimal<T>(epsilon<T>());
@@ -287,7 +288,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   // steps at the coarse width 10^-c and at 10^-(c-1): an entry may differ from the first by 4
   // times their difference (the truncation's size, over-estimated) + 100·10^(c-D)·max(1, |J|)
   // (the rounding's); beyond that it is a wrong entry, a finding naming the step and the entry.
-  Matrix<T, 2 * n, 2 * n> own_jacobian(const std::array<std::string, 2 * n>& y, const T& h,
+  Matrix<T, twice(N), twice(N)> own_jacobian(const std::vector<std::string>& y, const T& h,
                                        long step_index) const {
     nlohmann::json request = {{"h", to_decimal<T>(h)},
                               {"q", nlohmann::json::array()},
@@ -304,7 +305,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
           (answer.contains(jacobian_extension) ? quoted_text(answer[jacobian_extension].dump(), 200)
                                                : std::string("none")) +
           ")");
-    Matrix<T, 2 * n, 2 * n> jacobian;
+    Matrix<T, twice(N), twice(N)> jacobian(2 * n, 2 * n);
     for (int i = 0; i < 2 * n; ++i) {
       const nlohmann::json& row = answer[jacobian_extension][static_cast<std::size_t>(i)];
       if (!row.is_array() || row.size() != size)
@@ -357,13 +358,13 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   // differences at spacing s along the directions (1, 1, …) and (1, −1, …), each point's answer
   // one request; |Δ⁴ f_i| / √70 for every entry i of (q', p'), the largest. In MPFR at the
   // caller's PrecisionGuard.
-  R noise_near(const std::string& step, const std::array<std::string, 2 * n>& y, const T& h) const {
+  R noise_near(const std::string& step, const std::vector<std::string>& y, const T& h) const {
     using std::abs, std::max, std::pow, std::sqrt;
-    const auto image = [&](const std::array<R, 2 * n>& at) {
+    const auto image = [&](const std::vector<R>& at) {
       nlohmann::json request = {{"h", step}, {"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
       for (int i = 0; i < 2 * n; ++i) request[i < n ? "q" : "p"].push_back(to_decimal<R>(at[i]));
       const nlohmann::json answer = process_->request(request);
-      std::array<R, 2 * n> out;
+      std::vector<R> out(2 * n);
       for (int i = 0; i < n; ++i) {
         out[i] = number<R>(*process_, answer, "q", i, digits_);
         out[n + i] = number<R>(*process_, answer, "p", i, digits_);
@@ -372,16 +373,16 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
       }
       return out;
     };
-    std::array<R, 2 * n> centre;
+    std::vector<R> centre(2 * n);
     for (int j = 0; j < 2 * n; ++j) centre[j] = from_decimal<R>(y[j]);
-    const std::array<R, 2 * n> f0 = image(centre);
+    const std::vector<R> f0 = image(centre);
     const R spacing = pow(R(10), -(digits_ / 2));
     R noise = 0;
     for (int direction = 0; direction < 2; ++direction) {
-      std::array<std::array<R, 2 * n>, 4> f;  // at k = −2, −1, 1, 2
+      std::array<std::vector<R>, 4> f;  // at k = −2, −1, 1, 2
       const int ks[4] = {-2, -1, 1, 2};
       for (int m = 0; m < 4; ++m) {
-        std::array<R, 2 * n> at = centre;
+        std::vector<R> at = centre;
         for (int j = 0; j < 2 * n; ++j)
           at[j] += ks[m] * spacing * max(R(1), R(abs(centre[j]))) * (direction == 1 && j % 2 ? -1 : 1);
         f[m] = image(at);
@@ -449,7 +450,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   // p = FL(q, w), taken from the program's last answer when x is the state it gave (a run's next
   // step starts there): no evaluation of L, and the p the program wrote rather than its round
   // trip through w.
-  Vector<T, n> momentum_at(const State<T, n>& x) const {
+  Vector<T, N> momentum_at(const State<T, N>& x) const {
     if (last_ && last_->first.q == x.q && last_->first.w == x.w) return last_->second;
     return momentum(system_, x.q, x.w);
   }
@@ -465,8 +466,8 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
 
   // answer[key][i], a decimal string with at least `digits` significant digits (or zero), in S.
   template <class S>
-  static S number(const MapProcess& process, const nlohmann::json& answer, const char* key, int i,
-                  int digits) {
+  S number(const MapProcess& process, const nlohmann::json& answer, const char* key, int i,
+           int digits) const {
     const std::string field = std::string(key) + "[" + std::to_string(i) + "]";
     if (!answer.contains(key) || !answer[key].is_array() ||
         answer[key].size() != static_cast<std::size_t>(n))
@@ -502,6 +503,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   }
 
   System system_;
+  int n;  // the system's coordinates
   MapProcess::Options options_;
   nlohmann::json system_json_;
   int order_;
@@ -518,7 +520,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   mutable std::string noise_key_;  // answer_noise's last (h, y) and what it measured there
   mutable T noise_ = 0;
   mutable T last_unit_ = 0;        // the last Jacobian's relative rounding (last_jacobian_unit)
-  mutable std::optional<std::pair<State<T, n>, Vector<T, n>>> last_;  // the last answer: (q, w), p
+  mutable std::optional<std::pair<State<T, N>, Vector<T, N>>> last_;  // the last answer: (q, w), p
   static constexpr long recheck = 8;
 };
 

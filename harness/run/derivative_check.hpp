@@ -38,12 +38,13 @@ bool finite(const DifferenceResidual<T>& r) {
 }
 
 // ∇f at x by central differences with increments δ_i.
-template <class T, int n>
-Vector<T, n> central_gradient(const std::function<T(const Vector<T, n>&)>& f, const Vector<T, n>& x,
-                              const Vector<T, n>& delta) {
-  Vector<T, n> gradient;
+template <class T, int N>
+Vector<T, N> central_gradient(const std::function<T(const Vector<T, N>&)>& f, const Vector<T, N>& x,
+                              const Vector<T, N>& delta) {
+  const int n = static_cast<int>(x.size());
+  Vector<T, N> gradient(n);
   for (int i = 0; i < n; ++i) {
-    Vector<T, n> up = x, down = x;
+    Vector<T, N> up = x, down = x;
     up[i] += delta[i];
     down[i] -= delta[i];
     gradient[i] = (f(up) - f(down)) / (2 * delta[i]);
@@ -53,10 +54,10 @@ Vector<T, n> central_gradient(const std::function<T(const Vector<T, n>&)>& f, co
 
 // Increments for differences of a function of x at the scale `size` of its variation:
 // ε^(1/3)·size, the balance of truncation (δ²) and rounding (ε/δ).
-template <class T, int n>
-Vector<T, n> difference_steps(const T& size) {
+template <class T, int N>
+Vector<T, N> difference_steps(const T& size, int n) {
   using std::cbrt;
-  Vector<T, n> delta;
+  Vector<T, N> delta(n);
   for (int i = 0; i < n; ++i) delta[i] = cbrt(epsilon<T>()) * size;
   return delta;
 }
@@ -74,13 +75,14 @@ DifferenceResidual<typename System::Scalar> euler_lagrange_residual(
     const std::vector<typename System::Scalar>& weights, const typename System::Scalar& tau,
     const typename System::Scalar& u) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
+  constexpr int N = System::dimension;
   using std::abs;
   using std::max;
   using std::sqrt;
-  const auto value = [&](const Vector<T, n>& q, const Vector<T, n>& w) {
-    return T(system.lagrangian(as_point<T, n>(q), as_point<T, n>(w)));
+  const auto value = [&](const Vector<T, N>& q, const Vector<T, N>& w) {
+    return T(system.lagrangian(as_point<T, N>(q), as_point<T, N>(w)));
   };
+  const int n = static_cast<int>(begin.q.size());
   T q_size = 0, w_size = 0;
   for (int i = 0; i < n; ++i)
     q_size = max(q_size, T(abs(begin.q[i]))), w_size = max(w_size, T(abs(begin.w[i])));
@@ -88,16 +90,16 @@ DifferenceResidual<typename System::Scalar> euler_lagrange_residual(
   if (!(w_size > 0)) w_size = 1;
   const auto residual_with = [&](const T& shrink) {
     // The increments only set the differences' accuracy, which halving them measures.
-    const Vector<T, n> dq = difference_steps<T, n>(T(q_size / shrink));
-    const Vector<T, n> dw = difference_steps<T, n>(T(w_size / shrink));
-    const auto momentum = [&](const State<T, n>& x) {
-      return central_gradient<T, n>([&](const Vector<T, n>& w) { return value(x.q, w); }, x.w, dw);
+    const Vector<T, N> dq = difference_steps<T, N>(T(q_size / shrink), n);
+    const Vector<T, N> dw = difference_steps<T, N>(T(w_size / shrink), n);
+    const auto momentum = [&](const State<T, N>& x) {
+      return central_gradient<T, N>([&](const Vector<T, N>& w) { return value(x.q, w); }, x.w, dw);
     };
-    const Vector<T, n> change = momentum(end) - momentum(begin);
-    Vector<T, n> impulse = Vector<T, n>::Zero();
+    const Vector<T, N> change = momentum(end) - momentum(begin);
+    Vector<T, N> impulse = zero_vector<T, N>(n);
     for (std::size_t j = 0; j < nodes.size(); ++j)
       impulse += (weights[j] * tau) *
-                 central_gradient<T, n>([&](const Vector<T, n>& q) { return value(q, nodes[j].w); },
+                 central_gradient<T, N>([&](const Vector<T, N>& q) { return value(q, nodes[j].w); },
                                         nodes[j].q, dq);
     DifferenceResidual<T> r;
     for (int i = 0; i < n; ++i) {
@@ -141,10 +143,11 @@ DifferenceResidual<typename System::Scalar> del_residual(
     const VectorOf<System>& q0, const VectorOf<System>& q1, const VectorOf<System>& q2,
     const typename System::Scalar& h) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
+  constexpr int N = System::dimension;
   using std::abs;
   using std::max;
   using std::sqrt;
+  const int n = static_cast<int>(q1.size());
   T motion = 0, size = 0;
   for (int i = 0; i < n; ++i)
     motion = max({motion, T(abs(T(q1[i] - q0[i]))), T(abs(T(q2[i] - q1[i])))}), size = max(size, T(abs(q1[i])));
@@ -152,17 +155,17 @@ DifferenceResidual<typename System::Scalar> del_residual(
   if (!(motion > 0)) motion = 1;
   if (!(size > motion)) size = motion;
   const auto residual_with = [&](const T& scale, const T& shrink) {
-    const Vector<T, n> delta = difference_steps<T, n>(T(scale / shrink));
-    const Vector<T, n> past = central_gradient<T, n>(
-        [&](const Vector<T, n>& q) {
+    const Vector<T, N> delta = difference_steps<T, N>(T(scale / shrink), n);
+    const Vector<T, N> past = central_gradient<T, N>(
+        [&](const Vector<T, N>& q) {
           return T(
-              discrete_lagrangian(system, scheme.past, as_point<T, n>(q0), as_point<T, n>(q), h));
+              discrete_lagrangian(system, scheme.past, as_point<T, N>(q0), as_point<T, N>(q), h));
         },
         q1, delta);
-    const Vector<T, n> future = central_gradient<T, n>(
-        [&](const Vector<T, n>& q) {
+    const Vector<T, N> future = central_gradient<T, N>(
+        [&](const Vector<T, N>& q) {
           return T(
-              discrete_lagrangian(system, scheme.future, as_point<T, n>(q), as_point<T, n>(q2), h));
+              discrete_lagrangian(system, scheme.future, as_point<T, N>(q), as_point<T, N>(q2), h));
         },
         q1, delta);
     DifferenceResidual<T> r;

@@ -59,8 +59,8 @@ std::optional<std::string> unsettled_series(const std::vector<ClaimResult>& clai
 
 namespace {
 
-// `spec` run in scalar T: formula systems of dimension 1 to 4 in every scalar, catalogue
-// systems compiled in MPFR and through their formula twins in the others.
+// `spec` run in scalar T: formula systems of any dimension in every scalar, catalogue systems
+// compiled in MPFR and through their formula twins in the others.
 template <class T>
 void run_in_scalar(CaseSpec& spec, CaseResult& result, bool refine,
                    const std::function<void(const std::string&)>& progress) {
@@ -78,20 +78,11 @@ void run_in_scalar(CaseSpec& spec, CaseResult& result, bool refine,
   }
   if (formula) {
     result.formula = formula->text;
-    if constexpr (is_mpfr_v<T>) {
-      switch (spec.dimension) {
-        case 3: run_on_system(make_formula_system<T, 3>(*formula), spec, result, refine, progress); return;
-        case 4: run_on_system(make_formula_system<T, 4>(*formula), spec, result, refine, progress); return;
-        default: break;
-      }
-    }
+    // One and two coordinates at compile-time sizes (faster there); any other number at run time.
     switch (spec.dimension) {
       case 1: run_on_system(make_formula_system<T, 1>(*formula), spec, result, refine, progress); break;
       case 2: run_on_system(make_formula_system<T, 2>(*formula), spec, result, refine, progress); break;
-      default:
-        throw CaseError(spec.file, "scalar", "a system of " + std::to_string(spec.dimension) +
-                                                 " coordinates runs in mpfr only (double, long double and "
-                                                 "float128 are built for 1 and 2 coordinates)");
+      default: run_on_system(make_formula_system<T, any_size>(*formula), spec, result, refine, progress); break;
     }
     return;
   }

@@ -1,7 +1,7 @@
 // run_on_system: a case run on one system type, compiled once per system and
 // scalar (harness/run/run_system_impl.hpp holds the definition, CMake generates the
 // explicit instantiations of the catalogue systems and of formula systems of
-// dimension 1 to 4, grouped by scalar and dimension into a few units).
+// dimension 1 and 2 and of any size, grouped by scalar and dimension into a few units).
 #pragma once
 
 #include <functional>
@@ -28,8 +28,6 @@ using FormulaSystem1 = FormulaSystem<T, 1>;
 template <class T>
 using FormulaSystem2 = FormulaSystem<T, 2>;
 template <class T>
-using FormulaSystem3 = FormulaSystem<T, 3>;
-template <class T>
-using FormulaSystem4 = FormulaSystem<T, 4>;
+using FormulaSystemAny = FormulaSystem<T, any_size>;
 
 }  // namespace vivv
