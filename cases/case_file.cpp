@@ -179,6 +179,9 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
                                          "a narrower one is below what a fitted order can resolve");
   }
   if (reader.has("labels")) spec.labels = reader.strings("labels");
+  // "comment": the case's own words — where its data come from — for its readers; vivv keeps none of it.
+  if (reader.has("comment") && reader.string("comment").size() > 4000)
+    reader.fail("comment", "expected a text of at most 4000 characters");
 
   spec.claims = reader.strings("claims");
   if (spec.claims.empty()) reader.fail("claims", "expected at least one claim");

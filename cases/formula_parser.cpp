@@ -2,6 +2,7 @@
 
 #include <boost/fusion/include/at_c.hpp>
 #include <boost/spirit/home/x3.hpp>
+#include <algorithm>
 #include <cctype>
 #include <sstream>
 #include <string>
@@ -54,7 +55,16 @@ const auto make_call = [](auto& context) {
 const auto make_component = [](auto& context) {
   auto& matched = x3::_attr(context);
   FormulaNode node = leaf(Kind::component, boost::fusion::at_c<0>(matched), context);
-  node.component = static_cast<int>(std::min<unsigned>(boost::fusion::at_c<1>(matched), 1u << 20));
+  node.operands = std::move(boost::fusion::at_c<1>(matched));
+  x3::_val(context) = std::move(node);
+};
+// sum(i = a..b, body): the index's name, the bounds, the body.
+const auto make_sum = [](auto& context) {
+  auto& matched = x3::_attr(context);
+  FormulaNode node = leaf(Kind::sum, boost::fusion::at_c<0>(matched), context);
+  node.operands.push_back(std::move(boost::fusion::at_c<1>(matched)));
+  node.operands.push_back(std::move(boost::fusion::at_c<2>(matched)));
+  node.operands.push_back(std::move(boost::fusion::at_c<3>(matched)));
   x3::_val(context) = std::move(node);
 };
 const auto make_negate = [](auto& context) {
@@ -98,8 +108,10 @@ const auto multiplicative_def = x3::raw[x3::char_("*/")];
 const auto caret_def = x3::raw[x3::lit('^')];
 const auto arguments_def = expression % ',';
 const auto primary_def = number[make_number] |
+                         (x3::lit("sum") >> '(' > identifier > '=' > expression > ".." > expression > ',' > expression >
+                          ')')[make_sum] |
                          (identifier >> '(' > arguments > ')')[make_call] |
-                         (identifier >> '[' > x3::uint_ > ']')[make_component] |
+                         (identifier >> '[' > arguments > ']')[make_component] |
                          identifier[make_name] |
                          ('(' > expression > ')')[take];
 const auto power_def = primary[take] >> -(caret > unary)[fold];
@@ -184,10 +196,13 @@ FormulaNode parse_formula(const std::string& text) {
 }
 
 std::string describe_formula_error(const std::string& text, const FormulaError& error) {
-  constexpr std::size_t shown = 60;
+  // 60 characters of the formula: its start, or (for a position further in) from 30 before it.
+  constexpr std::size_t shown = 60, before = 30;
+  const std::size_t position = static_cast<std::size_t>(std::max(0, error.position));
+  const std::size_t start = position > before ? position - before : 0;
   std::ostringstream out;
-  out << "at character " << error.position + 1 << " of \"" << text.substr(0, shown)
-      << (text.size() > shown ? "…" : "") << "\": " << error.what();
+  out << "at character " << error.position + 1 << " of \"" << (start > 0 ? "…" : "") << text.substr(start, shown)
+      << (text.size() > start + shown ? "…" : "") << "\": " << error.what();
   return out.str();
 }
 

@@ -26,13 +26,6 @@ void read_formula_system(Reader& system, CaseSpec& spec) {
                             echo(spec.system) + "\"");
   auto definition = std::make_shared<FormulaSystemDefinition>();
   definition->name = spec.system;
-  definition->coordinates = system.strings("coordinates");
-  definition->velocities = system.strings("velocities");
-  const std::size_t n = definition->coordinates.size();
-  if (n < 1) system.fail("coordinates", "expected at least one coordinate name, got none");
-  if (definition->velocities.size() != n)
-    system.fail("velocities", "expected " + std::to_string(n) + " velocity names, one per coordinate, got " +
-                                  std::to_string(definition->velocities.size()));
   // Every name once, in one role, and not one the grammar reserves.
   std::map<std::string, std::string> role;
   auto claim_name = [&](const std::string& name, const std::string& field, const std::string& what) {
@@ -45,17 +38,78 @@ void read_formula_system(Reader& system, CaseSpec& spec) {
       throw CaseError(system.file(), field, "'" + name + "' is used both as " + role[name] + " and as " + what);
     role[name] = what;
   };
-  for (std::size_t i = 0; i < n; ++i)
-    claim_name(definition->coordinates[i], system.field("coordinates") + "[" + std::to_string(i) + "]",
-               "a coordinate");
-  for (std::size_t i = 0; i < n; ++i)
-    claim_name(definition->velocities[i], system.field("velocities") + "[" + std::to_string(i) + "]",
-               "a velocity");
+  // "coordinates" and "velocities": names, or indexed families {"x": [N, d]} whose members x[i, k]
+  // are coordinates in row-major order, entry by entry with the same shapes.
+  std::vector<std::vector<int>> coordinate_shapes;
+  const auto read_names = [&](const std::string& key, const std::string& what, std::vector<std::string>& names,
+                              std::vector<std::vector<int>>& shapes) {
+    const auto& value = system.get(key);
+    if (!value.is_array() || value.size() > 100000)
+      system.fail(key, "expected an array of names and indexed families such as {\"x\": [6, 3]}, got " + echo(value));
+    for (std::size_t e = 0; e < value.size(); ++e) {
+      const auto& entry = value[e];
+      const std::string field = system.field(key) + "[" + std::to_string(e) + "]";
+      if (entry.is_string()) {
+        claim_name(entry.get<std::string>(), field, what);
+        names.push_back(entry.get<std::string>());
+        shapes.push_back({});
+        continue;
+      }
+      if (!entry.is_object() || entry.size() != 1)
+        throw CaseError(system.file(), field, "expected a name or one indexed family such as {\"x\": [6, 3]}, got " +
+                                                  echo(entry));
+      const std::string family = entry.begin().key();
+      const auto& shape_json = entry.begin().value();
+      claim_name(family, field, what + " family");
+      std::vector<int> shape;
+      long members = 1;
+      if (shape_json.is_array() && !shape_json.empty() && shape_json.size() <= 3)
+        for (const auto& extent : shape_json) {
+          if (!extent.is_number_integer() || extent.get<long long>() < 1 || extent.get<long long>() > 1000000) {
+            shape.clear();
+            break;
+          }
+          shape.push_back(extent.get<int>());
+          members *= shape.back();
+        }
+      if (shape.empty() || members > 1000000)
+        throw CaseError(system.file(), field + "." + family,
+                        "expected the family's extents, one to three positive integers such as [6, 3] (at most "
+                        "10^6 members), got " + echo(shape_json));
+      std::vector<int> index(shape.size(), 1);
+      for (long m = 0; m < members; ++m) {
+        std::string name = family + "[";
+        for (std::size_t k = 0; k < index.size(); ++k) name += (k ? "," : "") + std::to_string(index[k]);
+        names.push_back(name + "]");
+        for (int k = static_cast<int>(index.size()) - 1; k >= 0 && ++index[k] > shape[k]; --k) index[k] = 1;
+      }
+      shapes.push_back(shape);
+    }
+  };
+  std::vector<std::vector<int>> velocity_shapes;
+  read_names("coordinates", "a coordinate", definition->coordinates, coordinate_shapes);
+  read_names("velocities", "a velocity", definition->velocities, velocity_shapes);
+  const std::size_t n = definition->coordinates.size();
+  if (n < 1) system.fail("coordinates", "expected at least one coordinate name, got none");
+  if (definition->velocities.size() != n || velocity_shapes != coordinate_shapes)
+    system.fail("velocities", "expected a velocity for each coordinate, entry by entry (a name for a name, a family "
+                              "of the same extents for a family): " + std::to_string(n) + " coordinates, got " +
+                                  std::to_string(definition->velocities.size()) + " velocities");
+  // "params": a decimal string per name, or an array of them (a family m[1], m[2], …).
   if (system.has("params")) {
     const auto& params = system.get("params");
     if (!params.is_object()) system.fail("params", "expected an object of name: decimal string, got " + echo(params));
     Reader values = system.object("params");
     for (const auto& [name, value] : params.items()) {
+      if (value.is_array()) {
+        claim_name(name, system.field("params") + "." + name, "a parameter family");
+        if (value.empty() || value.size() > 1000000)
+          values.fail(name, "expected an array of 1 to 10^6 decimal strings, got " + echo(value));
+        const std::vector<std::string> members = values.numbers(name, value.size());
+        for (std::size_t i = 0; i < members.size(); ++i)
+          spec.parameters.emplace_back(name + "[" + std::to_string(i + 1) + "]", members[i]);
+        continue;
+      }
       claim_name(name, system.field("params") + "." + name, "a parameter");
       spec.parameters.emplace_back(name, values.number(name));
     }
@@ -66,37 +120,114 @@ void read_formula_system(Reader& system, CaseSpec& spec) {
   definition->lagrangian = *read_formula(system, "lagrangian", text);
   definition->text = text;
   spec.dimension = static_cast<int>(n);
-  std::vector<std::string> symmetry_texts;
-  if (system.has("symmetry")) {
+  std::vector<std::string> symmetry_texts, symmetry_fields;
+  const auto parse_component = [&](const std::string& formula, const std::string& field) {
+    if (formula.size() > longest_formula) system.fail(field, "formula too long");
+    try {
+      return parse_formula(formula);
+    } catch (const FormulaError& error) {
+      throw CaseError(system.file(), system.field(field), describe_formula_error(formula, error));
+    }
+  };
+  if (system.has("symmetry") && system.get("symmetry").is_object()) {
+    // {"x[i]": ["-x[i,2]", "x[i,1]", "0"], "y": "1"}: per family, the generator of member i
+    // (one formula, or one per last index), and per name its formula; what is not named is 0.
+    const auto& object = system.get("symmetry");
+    std::map<std::string, std::pair<std::string, nlohmann::json>> given;  // family or name: (index, formulas)
+    for (const auto& [key, value] : object.items()) {
+      const auto open = key.find('[');
+      const std::string base = key.substr(0, open);
+      std::string index;
+      if (open != std::string::npos) {
+        if (key.back() != ']' || !is_formula_name(key.substr(open + 1, key.size() - open - 2)))
+          system.fail("symmetry", "expected a key such as \"x[i]\" (a family and the name of its first index) or a "
+                                  "coordinate's name, got \"" + echo(key) + "\"");
+        index = key.substr(open + 1, key.size() - open - 2);
+      }
+      given[base] = {index, value};
+    }
+    std::size_t member = 0;
+    for (std::size_t e = 0; e < coordinate_shapes.size(); ++e) {
+      const std::vector<int>& shape = coordinate_shapes[e];
+      const std::string name = definition->coordinates[member].substr(0, definition->coordinates[member].find('['));
+      const auto found = given.find(name);
+      long members = 1;
+      for (int extent : shape) members *= extent;
+      for (long m = 0; m < members; ++m, ++member) {
+        const std::string field = "symmetry." + name;
+        if (found == given.end()) {
+          symmetry_texts.push_back("0"), symmetry_fields.push_back(field);
+          definition->symmetry.push_back(parse_formula("0"));
+          continue;
+        }
+        const auto& [index, formulas] = found->second;
+        if (shape.empty() != index.empty())
+          system.fail("symmetry", shape.empty() ? "'" + name + "' is a coordinate, not a family: write its key as \"" +
+                                                      name + "\""
+                                                : "'" + name + "' is a family: write its key with the name of its first "
+                                                               "index, \"" + name + "[i]\"");
+        const int last = shape.size() == 2 ? static_cast<int>(m % shape[1]) : 0;
+        std::string formula;
+        if (shape.size() <= 1 && formulas.is_string()) {
+          formula = formulas.get<std::string>();
+        } else if (shape.size() == 2 && formulas.is_array() && formulas.size() == static_cast<std::size_t>(shape[1]) &&
+                   formulas[static_cast<std::size_t>(last)].is_string()) {
+          formula = formulas[static_cast<std::size_t>(last)].get<std::string>();
+        } else {
+          system.fail("symmetry", "expected for '" + name + "' " +
+                                      (shape.size() <= 1 ? std::string("one formula")
+                                                         : shape.size() == 2 ? "an array of " + std::to_string(shape[1]) +
+                                                                                   " formulas, one per last index"
+                                                                             : std::string("nothing: a family of three "
+                                                                                           "indices takes no symmetry")) +
+                                      ", got " + echo(formulas));
+        }
+        FormulaNode node = parse_component(formula, field);
+        if (!shape.empty()) {  // the family's first index bound to this member's: sum(i = c..c, ξ)
+          FormulaNode bound;
+          bound.kind = FormulaNode::Kind::number;
+          bound.text = std::to_string(m / (shape.size() == 2 ? shape[1] : 1) + 1);
+          FormulaNode wrapped;
+          wrapped.kind = FormulaNode::Kind::sum;
+          wrapped.text = index;
+          wrapped.operands = {bound, bound, std::move(node)};
+          node = std::move(wrapped);
+        }
+        symmetry_texts.push_back(formula), symmetry_fields.push_back(field);
+        definition->symmetry.push_back(std::move(node));
+      }
+      given.erase(name);
+    }
+    if (!given.empty())
+      system.fail("symmetry", "'" + echo(given.begin()->first) + "' is not a coordinate or a coordinate family");
+  } else if (system.has("symmetry")) {
     symmetry_texts = system.strings("symmetry");
     if (symmetry_texts.size() != n)
       system.fail("symmetry", "expected the generator ξ(q) as " + std::to_string(n) +
                                   " formulas, one per coordinate, got " + std::to_string(symmetry_texts.size()));
     for (std::size_t i = 0; i < n; ++i) {
       const std::string field = "symmetry[" + std::to_string(i) + "]";
-      if (symmetry_texts[i].size() > longest_formula) system.fail(field, "formula too long");
-      try {
-        definition->symmetry.push_back(parse_formula(symmetry_texts[i]));
-      } catch (const FormulaError& error) {
-        system.fail(field, describe_formula_error(symmetry_texts[i], error));
-      }
+      symmetry_fields.push_back(field);
+      definition->symmetry.push_back(parse_component(symmetry_texts[i], field));
     }
   }
   // Each component of ξ alone, so that an error names its field: a scalar in the coordinates
   // and parameters (the velocities are unknown names there).
-  for (std::size_t i = 0; i < symmetry_texts.size(); ++i) {
+  if (!symmetry_texts.empty()) {
     using V = TapeScalar<long double>;
     TapeRecording<long double> recording(static_cast<int>(n));
     FormulaScope<long double, V> scope;
-    for (std::size_t j = 0; j < n; ++j)
-      scope.names[definition->coordinates[j]] = FormulaValue<V>::scalar(recording.input(static_cast<int>(j)), false);
-    for (const auto& [name, value] : definition->parameters)
-      scope.names[name] = FormulaValue<V>::scalar(V(from_decimal<long double>(value)), true);
-    try {
-      if (interpret(definition->symmetry[i], scope).is_vector)
-        throw FormulaError(0, "expected a number, got a vector");
-    } catch (const FormulaError& error) {
-      system.fail("symmetry[" + std::to_string(i) + "]", describe_formula_error(symmetry_texts[i], error));
+    std::vector<V> inputs;
+    for (std::size_t j = 0; j < n; ++j) inputs.push_back(recording.input(static_cast<int>(j)));
+    bind_formula_names<long double, V>(scope, definition->coordinates, inputs, false);
+    bind_formula_parameters<long double, V>(scope, *definition);
+    for (std::size_t i = 0; i < symmetry_texts.size(); ++i) {
+      try {
+        if (interpret(definition->symmetry[i], scope).is_vector)
+          throw FormulaError(0, "expected a number, got a vector");
+      } catch (const FormulaError& error) {
+        system.fail(symmetry_fields[i], describe_formula_error(symmetry_texts[i], error));
+      }
     }
   }
   try {

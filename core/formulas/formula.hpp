@@ -33,22 +33,26 @@ struct FormulaError : std::runtime_error {
 };
 
 // One node of a formula's syntax tree.
+// component: `name[i, j, …]`, its operands the index expressions (integers, bound indices, + − *);
+// sum: `sum(i = a..b, body)`, its text the index, its operands a, b and the body.
 struct FormulaNode {
-  enum class Kind { number, name, negate, add, subtract, multiply, divide, power, call, component };
+  enum class Kind { number, name, negate, add, subtract, multiply, divide, power, call, component, sum };
   Kind kind = Kind::number;
-  std::string text;  // the literal (number), the name (name, component) or the function (call)
+  std::string text;  // the literal (number), the name (name, component), the function (call), the index (sum)
   int position = 0;  // offset of the node's first character in the formula
-  int component = 0;  // 1-based index of `name[component]`
   std::vector<FormulaNode> operands;
 };
 
 // The value of a formula or of a part of it: a scalar, or a vector such as qb.
+// An indexed family — x[i, k] of N bodies in d dimensions, masses m[i] — is a vector whose shape
+// has as many entries as it takes indices, its components row-major.
 template <class V>
 struct FormulaValue {
   std::vector<V> components;  // one entry for a scalar
   bool is_vector = false;
   bool is_constant = false;  // depends on no coordinate, velocity, qb, qe or h
-  static FormulaValue scalar(V value, bool constant) { return {{std::move(value)}, false, constant}; }
+  std::vector<int> shape;     // a vector's extent per index: {n} for qb, {N, d} for x[i, k]
+  static FormulaValue scalar(V value, bool constant) { return {{std::move(value)}, false, constant, {}}; }
 };
 
 // What a formula's names and L(x, v) mean, in V over the scalar T.
@@ -58,7 +62,14 @@ struct FormulaScope {
   // L(x, v), for discrete Lagrangians; empty where a formula may not call it.
   std::function<V(const std::vector<V>&, const std::vector<V>&)> lagrangian;
   int dimension = 0;  // length of L's arguments
+  // The indices the enclosing sums bind, by name (a sum binds its index while it interprets its body).
+  mutable std::map<std::string, long> indices;
+  mutable long terms = 0;  // the terms every sum has expanded so far (maximum_formula_terms)
 };
+
+// The largest number of terms a formula's sums may expand to, all sums together: a bound on the
+// work of reading it (a chain of 10⁵ particles is 10⁵ terms per sum).
+inline constexpr long maximum_formula_terms = 10000000;
 
 // Functions a formula may call, each of one argument (L(x, v) aside).
 inline const std::vector<std::string>& formula_functions() {
@@ -71,7 +82,7 @@ inline const std::vector<std::string>& formula_functions() {
 inline bool is_reserved_formula_name(const std::string& name) {
   for (const auto& f : formula_functions())
     if (f == name) return true;
-  return name == "pi" || name == "L";
+  return name == "pi" || name == "L" || name == "sum";
 }
 
 namespace formula_detail {
@@ -138,6 +149,43 @@ V apply_function(const std::string& f, const V& x, int position) {
 
 }  // namespace formula_detail
 
+// The integer an index expression stands for: integers, the indices enclosing sums bind, and
+// + − * of them. FormulaError at the first part that is none of these.
+template <class T, class V>
+long index_value(const FormulaNode& node, const FormulaScope<T, V>& scope) {
+  using Kind = FormulaNode::Kind;
+  constexpr long bound = 1L << 40;  // far beyond any family, and no overflow in + − *
+  const auto checked = [&](long value) {
+    if (value > bound || value < -bound) throw FormulaError(node.position, "an index beyond ±2^40");
+    return value;
+  };
+  switch (node.kind) {
+    case Kind::number: {
+      const bool integer = !node.text.empty() && node.text.size() <= 12 &&
+                           node.text.find_first_not_of("0123456789") == std::string::npos;
+      if (!integer) throw FormulaError(node.position, "expected an integer index, got " + node.text);
+      return std::stol(node.text);
+    }
+    case Kind::name: {
+      const auto found = scope.indices.find(node.text);
+      if (found == scope.indices.end()) {
+        std::string bound_names;
+        for (const auto& [name, value] : scope.indices) bound_names += (bound_names.empty() ? "" : ", ") + name;
+        throw FormulaError(node.position, "'" + node.text + "' is not an index here; an index is an integer or a name "
+                                              "a sum binds (" + (bound_names.empty() ? std::string("no sum encloses this") :
+                                                                 "bound here: " + bound_names) + ")");
+      }
+      return found->second;
+    }
+    case Kind::negate: return checked(-index_value(node.operands[0], scope));
+    case Kind::add: return checked(index_value(node.operands[0], scope) + index_value(node.operands[1], scope));
+    case Kind::subtract: return checked(index_value(node.operands[0], scope) - index_value(node.operands[1], scope));
+    case Kind::multiply: return checked(index_value(node.operands[0], scope) * index_value(node.operands[1], scope));
+    default:
+      throw FormulaError(node.position, "expected an index: integers, summation indices and + - * of them");
+  }
+}
+
 // The value of `node` in V with the names and L of `scope`. Throws FormulaError
 // at the offending node: an unknown name or function, a vector where a scalar
 // is expected (or the reverse), a non-constant exponent and, in T, a point
@@ -178,13 +226,63 @@ FormulaValue<V> interpret(const FormulaNode& node, const FormulaScope<T, V>& sco
     }
     case Kind::component: {
       auto found = scope.names.find(node.text);
-      if (found == scope.names.end() || !found->second.is_vector)
-        throw FormulaError(node.position, "'" + node.text + "' is not a vector: only qb and qe have components");
-      const int size = static_cast<int>(found->second.components.size());
-      if (node.component < 1 || node.component > size)
-        throw FormulaError(node.position, "expected a component index in [1, " + std::to_string(size) + "], got " +
-                                              std::to_string(node.component));
-      return Value::scalar(found->second.components[node.component - 1], found->second.is_constant);
+      if (found == scope.names.end() || !found->second.is_vector) {
+        std::string vectors;
+        for (const auto& [name, value] : scope.names)
+          if (value.is_vector) vectors += (vectors.empty() ? "" : ", ") + name;
+        throw FormulaError(node.position, "'" + node.text + "' is not a vector or an indexed family (" +
+                                              (vectors.empty() ? std::string("there are none here") : "here: " + vectors) + ")");
+      }
+      const Value& family = found->second;
+      const std::vector<int> shape =
+          family.shape.empty() ? std::vector<int>{static_cast<int>(family.components.size())} : family.shape;
+      if (node.operands.size() != shape.size())
+        throw FormulaError(node.position, "'" + node.text + "' takes " + std::to_string(shape.size()) + " ind" +
+                                              (shape.size() == 1 ? "ex" : "ices") + ", got " +
+                                              std::to_string(node.operands.size()));
+      long offset = 0;
+      for (std::size_t k = 0; k < shape.size(); ++k) {
+        const long index = index_value(node.operands[k], scope);
+        if (index < 1 || index > shape[k])
+          throw FormulaError(node.operands[k].position,
+                             "index " + std::to_string(k + 1) + " of '" + node.text + "' is " + std::to_string(index) +
+                                 ", outside its range 1.." + std::to_string(shape[k]));
+        offset = offset * shape[k] + (index - 1);
+      }
+      return Value::scalar(family.components[static_cast<std::size_t>(offset)], family.is_constant);
+    }
+    case Kind::sum: {
+      const long low = index_value(node.operands[0], scope), high = index_value(node.operands[1], scope);
+      if (scope.names.count(node.text) || scope.indices.count(node.text))
+        throw FormulaError(node.position, "the summation index '" + node.text +
+                                              "' is already a name here (a coordinate, velocity, parameter or "
+                                              "an enclosing sum's index)");
+      Value total = Value::scalar(V(0), true);
+      bool first = true;
+      for (long index = low; index <= high; ++index) {
+        if (++scope.terms > maximum_formula_terms) {
+          scope.indices.erase(node.text);
+          throw FormulaError(node.position, "the formula's sums expand to more than " +
+                                                std::to_string(maximum_formula_terms) + " terms");
+        }
+        scope.indices[node.text] = index;
+        Value term;
+        try {
+          term = interpret(node.operands[2], scope);
+        } catch (...) {
+          scope.indices.erase(node.text);
+          throw;
+        }
+        if (term.is_vector) {
+          scope.indices.erase(node.text);
+          throw FormulaError(node.operands[2].position, "expected a scalar to sum, got a vector");
+        }
+        total.components[0] = first ? term.components[0] : total.components[0] + term.components[0];
+        total.is_constant = total.is_constant && term.is_constant;
+        first = false;
+      }
+      scope.indices.erase(node.text);
+      return total;
     }
     case Kind::negate: {
       Value a = interpret(node.operands[0], scope);

@@ -17,6 +17,7 @@
 
 #include "core/qxq/discrete_lagrangian.hpp"
 #include "core/formulas/formula.hpp"
+#include "core/formulas/formula_system.hpp"
 #include "core/formulas/recorded.hpp"
 #include "core/autodiff/tape.hpp"
 
@@ -39,8 +40,12 @@ std::shared_ptr<const Tape<typename System::Scalar>> record_discrete_lagrangian(
   scope.names["qb"] = std::move(qb);
   scope.names["qe"] = std::move(qe);
   scope.names["h"] = FormulaValue<V>::scalar(recording.input(2 * n), false);
-  for (const auto& [name, value] : parameters)
-    scope.names[name] = FormulaValue<V>::scalar(V(from_decimal<T>(value)), true);
+  {
+    std::vector<std::string> names;
+    std::vector<V> values;
+    for (const auto& [name, value] : parameters) names.push_back(name), values.push_back(V(from_decimal<T>(value)));
+    bind_formula_names<T, V>(scope, names, values, true);
+  }
   scope.dimension = n;
   scope.lagrangian = [&system, n](const std::vector<V>& x, const std::vector<V>& v) {
     Coordinates<V, N> point = make_point<V, N>(n), velocity = make_point<V, N>(n);

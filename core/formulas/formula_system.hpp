@@ -10,6 +10,8 @@
 // LagrangianSystem like any in the catalogue.
 #pragma once
 
+#include <algorithm>
+#include <map>
 #include <memory>
 #include <string>
 #include <utility>
@@ -67,17 +69,69 @@ struct FormulaSystem {
   }
 };
 
+// Binds `names` to `values` in `scope`: a plain name to its value, a member of an indexed family
+// ("x[2,3]", as the case reader names them, every member of a family present, row-major) to its
+// place in the family x, whose shape is the largest index in each position.
+template <class T, class V>
+void bind_formula_names(FormulaScope<T, V>& scope, const std::vector<std::string>& names, const std::vector<V>& values,
+                        bool constant) {
+  struct Member {
+    std::vector<int> indices;
+    const V* value;
+  };
+  std::map<std::string, std::vector<Member>> families;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string& name = names[i];
+    const auto open = name.find('[');
+    if (open == std::string::npos) {
+      scope.names[name] = FormulaValue<V>::scalar(values[i], constant);
+      continue;
+    }
+    Member member{{}, &values[i]};
+    std::string index;
+    for (std::size_t k = open + 1; k < name.size(); ++k) {
+      if (name[k] == ',' || name[k] == ']') member.indices.push_back(std::stoi(index)), index.clear();
+      else index += name[k];
+    }
+    families[name.substr(0, open)].push_back(std::move(member));
+  }
+  for (auto& [name, members] : families) {
+    FormulaValue<V> family;
+    family.is_vector = true;
+    family.is_constant = constant;
+    family.shape.assign(members.front().indices.size(), 0);
+    for (const Member& member : members)
+      for (std::size_t k = 0; k < family.shape.size(); ++k) family.shape[k] = std::max(family.shape[k], member.indices[k]);
+    std::size_t size = 1;
+    for (int extent : family.shape) size *= static_cast<std::size_t>(extent);
+    family.components.assign(size, V(0));
+    for (const Member& member : members) {
+      std::size_t offset = 0;
+      for (std::size_t k = 0; k < family.shape.size(); ++k)
+        offset = offset * static_cast<std::size_t>(family.shape[k]) + static_cast<std::size_t>(member.indices[k] - 1);
+      family.components[offset] = *member.value;
+    }
+    scope.names[name] = std::move(family);
+  }
+}
+
+// The parameters of `definition` in V (constants in T), bound in `scope`.
+template <class T, class V>
+void bind_formula_parameters(FormulaScope<T, V>& scope, const FormulaSystemDefinition& definition) {
+  std::vector<std::string> names;
+  std::vector<V> values;
+  for (const auto& [name, value] : definition.parameters) names.push_back(name), values.push_back(V(from_decimal<T>(value)));
+  bind_formula_names<T, V>(scope, names, values, true);
+}
+
 // The scope of a system formula in V: coordinates and velocities from `q`, `w`, parameters in T.
 template <class T, class V>
 FormulaScope<T, V> system_formula_scope(const FormulaSystemDefinition& definition, const std::vector<V>& q,
                                         const std::vector<V>& w) {
   FormulaScope<T, V> scope;
-  for (std::size_t i = 0; i < definition.coordinates.size(); ++i) {
-    scope.names[definition.coordinates[i]] = FormulaValue<V>::scalar(q[i], false);
-    scope.names[definition.velocities[i]] = FormulaValue<V>::scalar(w[i], false);
-  }
-  for (const auto& [name, value] : definition.parameters)
-    scope.names[name] = FormulaValue<V>::scalar(V(from_decimal<T>(value)), true);
+  bind_formula_names<T, V>(scope, definition.coordinates, q, false);
+  bind_formula_names<T, V>(scope, definition.velocities, w, false);
+  bind_formula_parameters<T, V>(scope, definition);
   return scope;
 }
 
@@ -104,9 +158,8 @@ FormulaSystem<T, N> make_formula_system(const FormulaSystemDefinition& definitio
     std::vector<TapeScalar<T>> x;
     for (int i = 0; i < n; ++i) x.push_back(generator.input(i));
     FormulaScope<T, TapeScalar<T>> coordinates;  // the coordinates and parameters, no velocities
-    for (int i = 0; i < n; ++i) coordinates.names[definition.coordinates[i]] = FormulaValue<TapeScalar<T>>::scalar(x[i], false);
-    for (const auto& [name, value] : definition.parameters)
-      coordinates.names[name] = FormulaValue<TapeScalar<T>>::scalar(TapeScalar<T>(from_decimal<T>(value)), true);
+    bind_formula_names<T, TapeScalar<T>>(coordinates, definition.coordinates, x, false);
+    bind_formula_parameters<T, TapeScalar<T>>(coordinates, definition);
     std::vector<TapeScalar<T>> components;
     for (const FormulaNode& component : definition.symmetry) {
       const FormulaValue<TapeScalar<T>> xi = interpret(component, coordinates);
