@@ -1,6 +1,7 @@
 """serve() against greetings and requests written here: the digits it writes in each arithmetic,
 a declined greeting, the Jacobian extension taken up only when offered, an error answer."""
 import io
+import itertools
 import json
 import os
 import sys
@@ -108,6 +109,8 @@ def returns(value):
     (([1.0, 2.0], [0.0]), "2 numbers where 1 belong"),
     (([None], [0.0]), "None is not a number"),
     (([1 + 2j], [0.0]), "(1+2j) is complex"),
+    ((itertools.repeat(1.0), [0.0]), "more than 1 numbers where 1 belong"),  # an endless iterable, not read forever
+    (([10 ** 400], [0.0]), "cannot be written as a number (OverflowError"),  # an int beyond a double's range
 ])
 def test_a_bad_return_value_names_the_users_function_and_the_value(value, says):
     answer = talk(returns(value), [greeting(17), REQUEST], arithmetic="float")[1]["error"]
@@ -131,6 +134,13 @@ def test_a_bad_jacobian_names_the_users_function(matrix, says):
     request = dict(REQUEST, jacobian=True)
     answers = talk(euler, [greeting(17, ["jacobian"]), request], arithmetic="float", jacobian=my_jacobian)
     assert "my_jacobian (defined at " in answers[1]["error"] and says in answers[1]["error"]
+
+
+def test_sys_exit_in_the_users_step_is_an_error_answer_placed_at_its_line():
+    def my_step(h, q, p):
+        sys.exit(3)
+    answer = talk(my_step, [greeting(17), REQUEST], arithmetic="float")[1]["error"]
+    assert answer.startswith("SystemExit: 3") and f"(at {__file__}:" in answer
 
 
 def test_an_error_in_the_users_code_is_placed_there_not_in_vivv_map():

@@ -13,6 +13,7 @@ digits.
 import inspect
 import io
 import json
+import itertools as _itertools
 import numbers as _numbers
 import os
 import sys
@@ -86,9 +87,11 @@ def _real_numbers(values, size, what, function, returned):
     expected = f"expected {what}"
     if isinstance(values, (str, bytes)) or values is None or not hasattr(values, "__iter__"):
         raise BadAnswer(f"{_where(function)} returned {_shown(returned)}; {expected}")
-    values = list(values)
+    sized = hasattr(values, "__len__")
+    values = list(values) if sized else list(_itertools.islice(values, size + 1))  # an endless one is not read forever
     if len(values) != size:
-        raise BadAnswer(f"{_where(function)} returned {_shown(returned)}: {len(values)} numbers where "
+        count = f"more than {size}" if not sized and len(values) > size else str(len(values))
+        raise BadAnswer(f"{_where(function)} returned {_shown(returned)}: {count} numbers where "
                         f"{size} belong; {expected}")
     for x in values:
         kind = type(x).__name__
@@ -119,6 +122,19 @@ def _matrix(result, size, function):
     if len(rows) != size:
         raise BadAnswer(f"{_where(function)} returned {_shown(result)}: {len(rows)} rows; expected {what}")
     return [_real_numbers(row, size, what, function, result) for row in rows]
+
+
+def _written(values, numbers, function, returned):
+    """`values` as the arithmetic's decimal strings, or BadAnswer naming the function and the value
+    that has none (an int beyond a double's range, an object whose conversion raises)."""
+    text = []
+    for x in values:
+        try:
+            text.append(numbers.text(x))
+        except (ArithmeticError, ValueError, TypeError) as error:
+            raise BadAnswer(f"{_where(function)} returned {_shown(returned)}: {_shown(x)} cannot be written as a "
+                            f"number ({type(error).__name__}: {error})") from None
+    return text
 
 
 def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, input=None, output=None):
@@ -154,21 +170,23 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, input=None, o
         return 1
     send_jacobian = jacobian is not None and JACOBIAN in greeting.get("extensions", [])
     _reply(output, {"protocol": PROTOCOL, **({"extensions": [JACOBIAN]} if send_jacobian else {})})
-    write = lambda values: [numbers.text(x) for x in values]  # noqa: E731
     for line in input:
         request = json.loads(line)
         h = numbers.number(request["h"])
         q = numbers.vector(numbers.number(x) for x in request["q"])
         p = numbers.vector(numbers.number(x) for x in request["p"])
         try:
-            q_next, p_next = _state(step(h, q, p), dimension, step)
-            answer = {"q": write(q_next), "p": write(p_next)}
+            result = step(h, q, p)
+            q_next, p_next = _state(result, dimension, step)
+            answer = {"q": _written(q_next, numbers, step, result), "p": _written(p_next, numbers, step, result)}
             if send_jacobian and request.get(JACOBIAN) is True:  # vivv asks where it reads one
-                answer[JACOBIAN] = [write(row) for row in _matrix(jacobian(h, q, p), 2 * dimension, jacobian)]
+                matrix = jacobian(h, q, p)
+                answer[JACOBIAN] = [_written(row, numbers, jacobian, matrix)
+                                    for row in _matrix(matrix, 2 * dimension, jacobian)]
         except BadAnswer as bad:  # what the user's function returned, named with the function
             _reply(output, {"error": str(bad)})
             return 1
-        except Exception as error:  # the user's code: vivv names the request and this text
+        except (Exception, SystemExit) as error:  # the user's code (sys.exit() in step() too): named, with its line
             _reply(output, {"error": _described(error)})
             return 1
         _reply(output, answer)

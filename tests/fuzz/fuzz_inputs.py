@@ -5,6 +5,12 @@ the answers of a map program speaking protocol vivv-map/1.
     fuzz_inputs.py VIVV CORPUS_DIR WORK_DIR [--mutations M] [--seed S]
     fuzz_inputs.py --self-test WORK_DIR
 
+Kind "steps" needs no corpus: a program on vivv_map.serve (tests/fuzz/fuzzed_step.py) whose step()
+returns each of its malformed values (None, a string, a wrong length, complex, NaN, an endless
+iterable, an exit mid-run, …), at the first request and after three good ones. Besides the exit
+codes below, a program that could not run must be recorded with the user's file named (serve
+blames the user's function or line, never vivv_map's own).
+
 CORPUS_DIR/cases/*.json are case files, CORPUS_DIR/reports/*.json report.json files, and
 CORPUS_DIR/answers/*.jsonl a map program's answers, one line each (the greeting's first), with
 the case they answer beside them (*.case.json, whose command is replaced by the replay program
@@ -130,7 +136,7 @@ def check(vivv, kind, path, work, exits=None):
     shutil.rmtree(out, ignore_errors=True)
     if kind == "cases":
         command = [vivv, "run", path, "--out", out, "--quiet", "--max-seconds", "5"]
-    elif kind == "answers":
+    elif kind in ("answers", "steps"):
         command = [vivv, "run", path, "--out", out, "--quiet", "--max-seconds", "5", "--allow-process",
                    "--process-timeout", "5"]
     else:
@@ -155,6 +161,10 @@ def check(vivv, kind, path, work, exits=None):
             return "exit 4 but report.json records no case that could not run"
         if not os.path.exists(os.path.join(out, "junit.xml")):
             return "exit 4 but no junit.xml"
+        # The user's line (serve's message or a traceback), the answer's field, or an exit with nothing to say.
+        named = ("fuzzed_step.py:", 'fuzzed_step.py", line', "q[0] =", "p[0] =", "exited with status 0")
+        if kind == "steps" and not any(any(n in entry.get("message", "") for n in named) for entry in refused):
+            return "exit 4 but the record names neither the user's line nor the answer's field: %s" % refused[:1]
     if result.returncode == 2:
         if "vivv:" not in stderr:
             return "exit 2 without a message: %r" % stderr[-300:]
@@ -239,6 +249,27 @@ def main(argv):
                     saved = os.path.join(work, "failures", "%s-%s-%d.json" % (kind, name.split(".")[0], k))
                     shutil.copy(answers if kind == "answers" else path, saved)
                     print("%s: %s" % (saved, problem))
+    # A user's step() returning malformed values through vivv_map.serve.
+    fuzzed = os.path.join(os.path.dirname(os.path.abspath(__file__)), "fuzzed_step.py")
+    variants = int(subprocess.run([sys.executable, fuzzed, "count"], capture_output=True, text=True).stdout)
+    for variant in range(variants):
+        for good in (0, 3):
+            case = {"name": "fuzz-steps-%d-%d" % (variant, good),
+                    "system": {"name": "harmonic_oscillator", "params": {"omega": "1"}},
+                    "initial": {"q": ["1"], "w": ["0.5"]}, "T": "1", "steps": [4, 8, 16],
+                    "discretization": {"kind": "process", "command": [sys.executable, fuzzed, str(variant), str(good)],
+                                       "order": 1, "precision": "double"},
+                    "claims": ["global-order"]}
+            path = os.path.join(work, "input.json")
+            with open(path, "w") as f:
+                json.dump(case, f)
+            inputs += 1
+            problem = check(vivv, "steps", path, work, exits)
+            if problem:
+                failures += 1
+                saved = os.path.join(work, "failures", "steps-%d-%d.json" % (variant, good))
+                shutil.copy(path, saved)
+                print("%s: %s" % (saved, problem))
     print("fuzz: %d inputs (%d corpus files, %d mutations each, seed %d), exit codes %s, %d failures"
           % (inputs, inputs // (count + 1), count, seed,
              ", ".join("%d: %d" % item for item in sorted(exits.items())), failures))
