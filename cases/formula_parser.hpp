@@ -5,8 +5,13 @@
 //   term       = unary (("*" | "/") unary)*
 //   unary      = "-" unary | power
 //   power      = primary ("^" unary)?          (right-associative: 2^3^2 = 2^9)
-//   primary    = number | name "(" expression ("," expression)* ")"
-//              | name "[" integer "]" | name | "(" expression ")"
+//   primary    = number | "sum" "(" name "=" expression ".." expression "," expression ")"
+//              | name "(" expression ("," expression)* ")"
+//              | name "[" expression ("," expression)* "]" | name | "(" expression ")"
+//
+// An index in brackets, and a sum's bounds, are integer expressions: integers, the names of
+// enclosing sums' indices and + − * of them (checked when the formula is interpreted,
+// core/formulas/formula.hpp).
 //
 // Numbers are decimals ("0.1", "2", "1.5e-3") kept as text; names are
 // letters, digits and "_", starting with a letter. Spaces are ignored.
