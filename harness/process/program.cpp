@@ -229,6 +229,8 @@ void end_program_tree(pid_t leader, const std::string& token) noexcept {
 MapProcess::MapProcess(Options options, const nlohmann::json& greeting)
     : options_(std::move(options)) {
   const std::string program = resolve_program(options_.command.front(), options_.directory);
+  if (options_.command.front().find('/') == std::string::npos)
+    resolved_note_ = "; " + repaired_utf8(quoted_text(options_.command.front(), 100)) + " is " + repaired_utf8(program);
   std::vector<std::string> words = options_.command;
   std::vector<char*> argv;
   for (auto& word : words) argv.push_back(word.data());
@@ -422,7 +424,7 @@ nlohmann::json MapProcess::parse_answer(const std::string& line, const std::stri
 }
 
 std::string MapProcess::answering() const {
-  return "the map program " + name() + " (in " + repaired_utf8(options_.directory) + "), " +
+  return "the map program " + name() + " (in " + repaired_utf8(options_.directory) + resolved_note_ + "), " +
          last_request_;
 }
 
@@ -432,8 +434,8 @@ void MapProcess::fail_answer(const std::string& what) const {
 
 void MapProcess::fail(const std::string& request_name, const std::string& what) {
   drain_stderr();
-  std::string message = "the map program " + name() + " (in " + repaired_utf8(options_.directory) + "), " +
-                        request_name + ": " + what;
+  std::string message = "the map program " + name() + " (in " + repaired_utf8(options_.directory) + resolved_note_ +
+                        "), " + request_name + ": " + what;
   if (!stderr_tail_.empty()) {
     // The kept tail may begin inside a character, and a program may write any bytes at all.
     std::string tail = repaired_utf8(stderr_tail_);

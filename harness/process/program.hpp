@@ -84,6 +84,9 @@ class MapProcess {
   void drain_stderr();
 
   Options options_;
+  // "; python3 is /usr/bin/python3": where PATH took a program named without a '/', for messages
+  // (another python3 first on PATH — pyenv, conda — is the commonest reason a program cannot start).
+  std::string resolved_note_;
   pid_t pid_ = -1;
   int input_ = -1, output_ = -1, errors_ = -1;  // vivv's ends of the three pipes
   std::string buffer_;                          // what was read of the answer line so far
