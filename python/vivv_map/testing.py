@@ -29,6 +29,33 @@ class VivvError(RuntimeError):
     without a report (exit 3); the message is what vivv printed."""
 
 
+# How much of one explanation an assertion's message carries (the rest is in report.json).
+SHOWN_CHARACTERS = 300
+
+
+def _shortened(text, limit=SHOWN_CHARACTERS):
+    """`text` cut in the middle to `limit` characters: its start says what, its end says why."""
+    if len(text) <= limit:
+        return text
+    half = (limit - 3) // 2
+    return text[:half] + " … " + text[-half:]
+
+
+class Verdicts(dict):
+    """{case: {claim: verdict}}; a case without verdicts — one that could not run — raises a KeyError
+    that says why, not only its name."""
+
+    def __init__(self, verdicts, could_not_run, report):
+        super().__init__(verdicts)
+        self._could_not_run, self._report = could_not_run, report
+
+    def __missing__(self, case):
+        if case in self._could_not_run:
+            raise KeyError(f"{case!r} has no verdicts: it could not run: {_shortened(self._could_not_run[case])}")
+        raise KeyError(f"{case!r} has no verdicts in {self._report}; its cases: {', '.join(sorted(self)) or 'none'}"
+                       + (f"; could not run: {', '.join(sorted(self._could_not_run))}" if self._could_not_run else ""))
+
+
 class Run:
     """One `vivv run`: exit_code, console (stdout and stderr), report (report.json as a dict),
     out (the report directory), verdicts ({case: {claim: verdict}}), regressed ([(case, claim)]
@@ -37,12 +64,12 @@ class Run:
     def __init__(self, exit_code, console, out):
         self.exit_code, self.console, self.out = exit_code, console, pathlib.Path(out)
         self.report = json.loads((self.out / "report.json").read_text())
-        self.verdicts = {c["name"]: {claim["id"]: claim["verdict"] for claim in c["claims"]}
-                         for c in self.report["cases"]}
-        self.regressed = [(c["name"], claim["id"]) for c in self.report["cases"] for claim in c["claims"]
-                          if claim.get("baseline", {}).get("status") == "regressed"]
         self.could_not_run = {entry["name"]: entry["message"] for entry in self.report.get("refused", [])
                               if entry.get("kind") == "could-not-run"}
+        self.verdicts = Verdicts({c["name"]: {claim["id"]: claim["verdict"] for claim in c["claims"]}
+                                  for c in self.report["cases"]}, self.could_not_run, self.out / "report.json")
+        self.regressed = [(c["name"], claim["id"]) for c in self.report["cases"] for claim in c["claims"]
+                          if claim.get("baseline", {}).get("status") == "regressed"]
 
     def claim(self, case, claim):
         """The claim's whole record in report.json: verdict, explanation, series, evidence."""
@@ -54,12 +81,37 @@ class Run:
         raise KeyError(f"no claim {claim!r} of case {case!r} in {self.out / 'report.json'}")
 
     def explain(self):
-        """Every claim that did not pass, with vivv's explanation: an assertion's message."""
-        lines = [f"{c['name']} / {claim['id']}: {claim['verdict']}: {claim.get('explanation', '')}"
+        """Every claim that did not pass, every regression (with the claim and vivv's ratio) and every
+        case that could not run (with its cause), one line each, each at most SHOWN_CHARACTERS of
+        vivv's words: an assertion's message (report.json has the rest)."""
+        lines = [f"{c['name']} / {claim['id']}: {claim['verdict']}: {_shortened(claim.get('explanation', ''))}"
                  for c in self.report["cases"] for claim in c["claims"] if claim["verdict"] not in ("pass", "xfail")]
-        lines += [f"{case} / regressed against the baseline" for case, _ in self.regressed]
-        lines += [f"{case}: could not run: {message}" for case, message in self.could_not_run.items()]
+        lines += [f"{case} / {claim}: regressed against the baseline: "
+                  f"{_shortened(self.claim(case, claim)['baseline'].get('explanation', ''))}" for case, claim in self.regressed]
+        lines += [f"{case}: could not run: {_shortened(message)}" for case, message in self.could_not_run.items()]
         return "\n".join(lines) or "every claim passed"
+
+
+def assert_verdicts(run, expected):
+    """Asserts that `run` gave the `expected` verdicts, {case: {claim: verdict}} or {case: verdict}
+    (every claim of the case), with a short difference: one line per claim that differs, vivv's
+    reason beside it, and a case that could not run with its cause."""
+    differences = []
+    for case, wanted in expected.items():
+        if case in run.could_not_run:
+            differences.append(f"{case}: could not run: {_shortened(run.could_not_run[case])}")
+            continue
+        if case not in run.verdicts:
+            differences.append(f"{case}: not in the report (cases: {', '.join(sorted(run.verdicts)) or 'none'})")
+            continue
+        claims = wanted if isinstance(wanted, dict) else {claim: wanted for claim in run.verdicts[case]}
+        for claim, verdict in claims.items():
+            got = run.verdicts[case].get(claim)
+            if got != verdict:
+                why = run.claim(case, claim).get("explanation", "") if got is not None else "the case has no such claim"
+                differences.append(f"{case} / {claim}: expected {verdict}, got {got}: {_shortened(why)}")
+    if differences:
+        raise AssertionError("verdicts differ:\n" + "\n".join(differences))
 
 
 def find_vivv(vivv=None):
