@@ -21,7 +21,7 @@ void check_expression(const FormulaNode& tree, int dimension,
   using V = TapeScalar<T>;
   TapeRecording<T> recording(2 * dimension + 1);
   FormulaScope<T, V> scope;
-  FormulaValue<V> qb{{}, true, false}, qe{{}, true, false};
+  FormulaValue<V> qb{{}, true, false, {}}, qe{{}, true, false, {}};
   for (int i = 0; i < dimension; ++i)
     qb.components.push_back(recording.input(i)), qe.components.push_back(recording.input(dimension + i));
   scope.names["qb"] = qb;

@@ -34,7 +34,7 @@ std::shared_ptr<const Tape<typename System::Scalar>> record_discrete_lagrangian(
   const int n = dimension_of(system);
   TapeRecording<T> recording(2 * n + 1);
   FormulaScope<T, V> scope;
-  FormulaValue<V> qb{{}, true, false}, qe{{}, true, false};
+  FormulaValue<V> qb{{}, true, false, {}}, qe{{}, true, false, {}};
   for (int i = 0; i < n; ++i)
     qb.components.push_back(recording.input(i)), qe.components.push_back(recording.input(n + i));
   scope.names["qb"] = std::move(qb);

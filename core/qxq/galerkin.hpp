@@ -142,7 +142,7 @@ GalerkinAction<typename System::Scalar> galerkin_action(
       Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>::Zero(n * blocks, n * blocks)};
   std::vector<T> a(blocks), d(blocks), a_weighted(blocks), d_weighted(blocks);
   // M_k = ∇²L [a_k I; d_k I]: rows 0 … n − 1 the q-rows, n … 2n − 1 the w-rows.
-  std::vector<Eigen::Matrix<T, twice(N), N>> M(blocks, Eigen::Matrix<T, twice(N), N>(2 * n, n));
+  std::vector<Eigen::Matrix<T, twice(N), N>> M(blocks, Eigen::Matrix<T, twice(N), N>::Zero(2 * n, n));
   Vector<T, N> x(n), v(n);
   T scratch, term;
   for (std::size_t i = 0; i < rule.weights.size(); ++i) {
