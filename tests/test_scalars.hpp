@@ -14,6 +14,8 @@
 namespace vivv::testing {
 
 using Scalars = ::testing::Types<double, quad, mpfr_real>;
+// The run-time-size and sparse paths are tested in long double too.
+using AllScalars = ::testing::Types<double, long double, quad, mpfr_real>;
 
 // Readable typed-test names: "double", "float128", "mpfr" instead of Boost's type names.
 struct ScalarNames {

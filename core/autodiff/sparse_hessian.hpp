@@ -211,7 +211,7 @@ EdgePushed<S> edge_push(const Tape<T>& tape, const S* x) {
     if (!reached[i] && W.row(i).empty()) continue;
     const LocalDerivatives<S> d = local_derivatives(tape, i, value);
     for (const auto& [p, slot] : W.row(i)) {
-      const S& w = W.weight(slot);
+      const S w = W.weight(slot);  // a copy: adding to W may move its weights
       if (p == i) {
         for (int a = 0; a < d.count; ++a)
           for (int b = a; b < d.count; ++b) W.add(d.predecessor[a], d.predecessor[b], d.first[a] * d.first[b] * w);

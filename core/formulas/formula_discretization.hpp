@@ -86,6 +86,8 @@ QxQDiscretization<typename System::Scalar> expression_discretization(
   QxQDiscretization<typename System::Scalar> d;
   d.rule = QxQRule::expression;
   d.expression = record_discrete_lagrangian(system, tree, parameters);
+  if constexpr (System::dimension == any_size)
+    d.expression_derivatives = std::make_shared<const SecondDerivativeTape<typename System::Scalar>>(*d.expression);
   d.formula = text;
   d.declared_order = order;
   return d;
@@ -98,6 +100,8 @@ QxQDiscretization<typename System::Scalar> recorded_discretization(
   QxQDiscretization<typename System::Scalar> d;
   d.rule = QxQRule::expression;
   d.expression = record_discrete_lagrangian(system, recorder);
+  if constexpr (System::dimension == any_size)
+    d.expression_derivatives = std::make_shared<const SecondDerivativeTape<typename System::Scalar>>(*d.expression);
   d.formula = text;
   d.declared_order = order;
   return d;

@@ -20,6 +20,7 @@
 #include "core/formulas/formula.hpp"
 #include "core/lagrangian/lagrangian.hpp"
 #include "core/formulas/recorded.hpp"
+#include "core/autodiff/sparse_hessian.hpp"
 #include "core/autodiff/tape.hpp"
 
 namespace vivv {
@@ -45,6 +46,10 @@ struct FormulaSystem {
   using Scalar = T;
   static constexpr int dimension = n;
   std::shared_ptr<const Tape<T>> program;  // inputs q_1 … q_n, w_1 … w_n; one output, L
+  // Sized at run time: L's gradient and sparse Hessian, recorded from `program` by edge pushing
+  // (core/autodiff/sparse_hessian.hpp), which the Q × Q rules and the DEL step use instead of
+  // dense jets (core/qxq/sparse_legendre.hpp). Null at the fixed sizes 1 and 2.
+  std::shared_ptr<const SecondDerivativeTape<T>> derivatives;
   int coordinates = n;
 
   int size() const { return coordinates; }
@@ -148,11 +153,13 @@ FormulaSystem<T, N> make_formula_system(const FormulaSystemDefinition& definitio
   if (definition.recorded) {
     const TapeScalar<T> value = definition.recorded->template get<T>()(q, w, definition.parameters);
     system.program = std::make_shared<const Tape<T>>(recording.finish({value}));
+    if constexpr (N == any_size) system.derivatives = std::make_shared<const SecondDerivativeTape<T>>(*system.program);
     return system;
   }
   const auto scope = system_formula_scope<T>(definition, q, w);
   const FormulaValue<TapeScalar<T>> value = interpret(definition.lagrangian, scope);
   system.program = std::make_shared<const Tape<T>>(recording.finish({value.components[0]}));
+  if constexpr (N == any_size) system.derivatives = std::make_shared<const SecondDerivativeTape<T>>(*system.program);
   if (!definition.symmetry.empty()) {
     TapeRecording<T> generator(n);
     std::vector<TapeScalar<T>> x;

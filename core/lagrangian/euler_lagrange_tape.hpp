@@ -23,6 +23,7 @@
 // j of the flow's Jacobian d(q(t), w(t)) / d(q(0), w(0)).
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,57 @@ concept TapeRecordable =
       { system.lagrangian(x, x) };
     };
 
+// The same from L's sparse derivatives (core/autodiff/sparse_hessian.hpp), for a system sized at
+// run time: the derivative tape replayed in TapeScalar gives dL/dq and the nonzeros of d²L/dw²
+// and d²L/dw dq, and M a = rhs is eliminated on M's sparsity pattern (symmetric, so the rows a
+// pivot row updates are the columns it holds), without pivoting as above. Its tape grows like L's
+// and M's fill-in, where the dense recording is O(n³) (a jet of n² entries through every node).
+template <class T>
+Tape<T> sparse_euler_lagrange_tape(const SecondDerivativeTape<T>& derivatives) {
+  using S = TapeScalar<T>;
+  const int n = derivatives.inputs / 2;
+  TapeRecording<T> recording(2 * n);
+  std::vector<S> x;
+  for (int k = 0; k < 2 * n; ++k) x.push_back(recording.input(k));
+  std::vector<S> value;
+  derivatives.program.run(x.data(), value);
+  const auto output = [&](std::size_t k) { return value[derivatives.program.outputs[k]]; };
+  std::vector<std::map<int, S>> M(n);
+  std::vector<S> rhs(n);
+  for (int i = 0; i < n; ++i) rhs[i] = output(1 + i);
+  for (std::size_t e = 0; e < derivatives.pattern.size(); ++e) {
+    const auto [r, c] = derivatives.pattern[e];  // r >= c
+    const S entry = output(1 + 2 * n + e);
+    if (c >= n) {
+      M[r - n][c - n] = entry, M[c - n][r - n] = entry;
+    } else if (r >= n) {
+      rhs[r - n] = rhs[r - n] - entry * x[n + c];  // (d²L/dw_i dq_j) w_j, i = r − n, j = c
+    }
+  }
+  for (int j = 0; j < n; ++j) {
+    const auto pivot = M[j].find(j);
+    if (pivot == M[j].end() || pivot->second.is_constant(0))
+      throw SingularLagrangianError("euler_lagrange_tape: d2L/dw2 has an identically zero pivot (row " +
+                                    std::to_string(j) + ")");
+    for (auto it = M[j].upper_bound(j); it != M[j].end(); ++it) {
+      const int i = it->first;
+      const S factor = M[i].at(j) / pivot->second;
+      for (auto k = M[j].upper_bound(j); k != M[j].end(); ++k) {
+        auto [slot, inserted] = M[i].try_emplace(k->first, S(0));
+        slot->second = slot->second - factor * k->second;
+      }
+      rhs[i] = rhs[i] - factor * rhs[j];
+    }
+  }
+  std::vector<S> acceleration(n);
+  for (int i = n - 1; i >= 0; --i) {
+    S sum = rhs[i];
+    for (auto k = M[i].upper_bound(i); k != M[i].end(); ++k) sum = sum - k->second * acceleration[k->first];
+    acceleration[i] = sum / M[i].at(i);
+  }
+  return recording.finish(acceleration);
+}
+
 // Tape of a(q, w) = M⁻¹ (dL/dq − (d²L/dw dq) w): inputs (q_1..q_n, w_1..w_n), outputs a_1..a_n.
 template <TapeRecordable System>
 Tape<typename System::Scalar> euler_lagrange_tape(const System& system) {
@@ -49,6 +101,9 @@ Tape<typename System::Scalar> euler_lagrange_tape(const System& system) {
   using S = TapeScalar<T>;
   constexpr int N = System::dimension;
   const int n = dimension_of(system);
+  if constexpr (SparselyDifferentiated<System>) {
+    if (system.derivatives) return sparse_euler_lagrange_tape(*system.derivatives);
+  }
   using J = Jet<S, twice(N)>;
   TapeRecording<T> recording(2 * n);
   Coordinates<J, N> q = make_point<J, N>(n), w = make_point<J, N>(n);

@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "core/autodiff/jet.hpp"
+#include "core/autodiff/sparse_hessian.hpp"
+#include "core/numerics/linear_solve.hpp"
 #include "core/numerics/scalar.hpp"
 
 namespace vivv {
@@ -93,6 +95,25 @@ concept LagrangianSystem = requires(const System& system,
 template <class System>
 using VectorOf = Vector<typename System::Scalar, System::dimension>;
 
+// A system sized at run time that carries its L's gradient and sparse Hessian as a tape over
+// (q, w) (core/autodiff/sparse_hessian.hpp; a formula system of 3 or more coordinates): its
+// derivatives are read from that tape, whose cost grows like L's, instead of from dense jets.
+template <class System>
+concept SparselyDifferentiated =
+    LagrangianSystem<System> && System::dimension == any_size && requires(const System& system) {
+      { *system.derivatives } -> std::convertible_to<const SecondDerivativeTape<typename System::Scalar>&>;
+    };
+
+// L's value and gradient over (q, w) from such a system's tape.
+template <SparselyDifferentiated System>
+EdgePushed<typename System::Scalar> sparse_gradient(const System& system, const VectorOf<System>& q,
+                                                    const VectorOf<System>& w) {
+  const int n = static_cast<int>(q.size());
+  std::vector<typename System::Scalar> x(2 * n);
+  for (int i = 0; i < n; ++i) x[i] = q[i], x[n + i] = w[i];
+  return system.derivatives->evaluate_gradient(x.data());
+}
+
 // Thrown when d²L/dw² is singular at a state the computation visits.
 struct SingularLagrangianError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -117,6 +138,23 @@ auto lagrangian_derivatives(const System& system,
   using T = typename System::Scalar;
   constexpr int N = System::dimension;
   const int n = static_cast<int>(q.size());
+  if constexpr (SparselyDifferentiated<System>) {
+    if (system.derivatives) {
+      std::vector<T> x(2 * n);
+      for (int i = 0; i < n; ++i) x[i] = q[i], x[n + i] = w[i];
+      const EdgePushed<T> L = system.derivatives->evaluate(x.data());
+      LagrangianDerivatives<T, N> d(n);
+      d.d2L_dw2.setZero(), d.d2L_dwdq.setZero();
+      d.value = L.value;
+      for (int i = 0; i < n; ++i) d.dL_dq[i] = L.gradient[i], d.dL_dw[i] = L.gradient[n + i];
+      for (std::size_t e = 0; e < L.hessian.size(); ++e) {
+        const auto [r, c] = system.derivatives->pattern[e];  // r >= c
+        if (c >= n) d.d2L_dw2(r - n, c - n) = d.d2L_dw2(c - n, r - n) = L.hessian[e];
+        else if (r >= n) d.d2L_dwdq(r - n, c) = L.hessian[e];
+      }
+      return d;
+    }
+  }
   using J = Jet<T, twice(N)>;
   Coordinates<J, N> jet_q = make_point<J, N>(n), jet_w = make_point<J, N>(n);
   for (int i = 0; i < n; ++i) {
@@ -159,6 +197,15 @@ auto lagrangian_in_velocity(const System& system,
 template <LagrangianSystem System>
 auto momentum(const System& system, const VectorOf<System>& q,
               const VectorOf<System>& w) {
+  if constexpr (SparselyDifferentiated<System>) {
+    if (system.derivatives) {
+      const int n = static_cast<int>(q.size());
+      const auto L = sparse_gradient(system, q, w);
+      VectorOf<System> p(n);
+      for (int i = 0; i < n; ++i) p[i] = L.gradient[n + i];
+      return p;
+    }
+  }
   const auto L = lagrangian_in_velocity<1>(system, q, w);
   VectorOf<System> p(q.size());
   for (int i = 0; i < static_cast<int>(q.size()); ++i) p[i] = L.gradient[i];
@@ -170,10 +217,53 @@ template <LagrangianSystem System>
 auto energy(const System& system, const VectorOf<System>& q,
             const VectorOf<System>& w) {
   using T = typename System::Scalar;
+  if constexpr (SparselyDifferentiated<System>) {
+    if (system.derivatives) {
+      const int n = static_cast<int>(q.size());
+      const auto L = sparse_gradient(system, q, w);
+      T energy = -L.value;
+      for (int i = 0; i < n; ++i) energy += L.gradient[n + i] * w[i];
+      return energy;
+    }
+  }
   const auto L = lagrangian_in_velocity<1>(system, q, w);
   T energy = -L.value;
   for (int i = 0; i < static_cast<int>(q.size()); ++i) energy += L.gradient[i] * w[i];
   return energy;
+}
+
+// The same as euler_lagrange_acceleration below, from L's sparse derivatives: M and d²L/dw dq as
+// sparse matrices, M factored sparse, with the dense path's test of a singular M.
+template <SparselyDifferentiated System>
+auto sparse_euler_lagrange_acceleration(const System& system, const VectorOf<System>& q, const VectorOf<System>& w) {
+  using T = typename System::Scalar;
+  using std::isfinite;
+  const int n = static_cast<int>(q.size());
+  std::vector<T> x(2 * n);
+  for (int i = 0; i < n; ++i) x[i] = q[i], x[n + i] = w[i];
+  const EdgePushed<T> L = system.derivatives->evaluate(x.data());
+  if (!isfinite(L.value))
+    throw SingularLagrangianError("L(q, w) is not finite at q = " + to_decimal<T>(q[0]) + ", w = " +
+                                  to_decimal<T>(w[0]) + ": the state is outside the Lagrangian's domain");
+  Vector<T, any_size> rhs(n);
+  for (int i = 0; i < n; ++i) rhs[i] = L.gradient[i];
+  std::vector<Eigen::Triplet<T>> mass;
+  for (std::size_t e = 0; e < L.hessian.size(); ++e) {
+    const auto [r, c] = system.derivatives->pattern[e];  // r >= c
+    if (c >= n) {
+      mass.emplace_back(r - n, c - n, L.hessian[e]);
+      if (r != c) mass.emplace_back(c - n, r - n, L.hessian[e]);
+    } else if (r >= n) {
+      rhs[r - n] -= L.hessian[e] * w[c];
+    }
+  }
+  Eigen::SparseMatrix<T> M(n, n);
+  M.setFromTriplets(mass.begin(), mass.end());
+  Vector<T, any_size> acceleration = zero_vector<T, any_size>(n);
+  if (!solve_linear(M, rhs, acceleration, T(1024 * epsilon<T>())))
+    throw SingularLagrangianError("the Lagrangian is not regular: d2L/dw2 is singular at q = " + to_decimal<T>(q[0]) +
+                                  ", w = " + to_decimal<T>(w[0]) + (n > 1 ? " (first components)" : ""));
+  return acceleration;
 }
 
 // Euler–Lagrange acceleration q'' = M⁻¹ (dL/dq − (d²L/dw dq) w), docs/theory.md.
@@ -184,6 +274,9 @@ auto euler_lagrange_acceleration(const System& system,
   using T = typename System::Scalar;
   using std::abs;
   using std::isfinite;
+  if constexpr (SparselyDifferentiated<System>) {
+    if (system.derivatives) return sparse_euler_lagrange_acceleration(system, q, w);
+  }
   auto d = lagrangian_derivatives(system, q, w);
   if (!isfinite(d.value))
     throw SingularLagrangianError("L(q, w) is not finite at q = " + to_decimal<T>(q[0]) +

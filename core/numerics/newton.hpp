@@ -11,6 +11,9 @@
 #include <vector>
 #include <utility>
 
+#include <Eigen/SparseCore>
+
+#include "core/numerics/linear_solve.hpp"
 #include "core/numerics/scalar.hpp"
 
 namespace vivv {
@@ -83,11 +86,41 @@ std::string describe_corrections(const std::vector<T>& corrections) {
   return text;
 }
 
+namespace newton_detail {
+
+// The Jacobian's storage: dense, or (a system sized at run time, sparse where L is) Eigen's.
+template <class T, int m>
+Matrix<T, m, m> empty_jacobian(Matrix<T, m, m>*, int count) {
+  return zero_matrix<T, m, m>(count, count);
+}
+template <class T, int m>
+Eigen::SparseMatrix<T> empty_jacobian(Eigen::SparseMatrix<T>*, int count) {
+  return Eigen::SparseMatrix<T>(count, count);
+}
+
+template <class T, int m>
+bool all_finite(const Matrix<T, m, m>& jacobian) {
+  return jacobian.allFinite();
+}
+template <class T>
+bool all_finite(const Eigen::SparseMatrix<T>& jacobian) {
+  for (int k = 0; k < jacobian.outerSize(); ++k)
+    for (typename Eigen::SparseMatrix<T>::InnerIterator it(jacobian, k); it; ++it) {
+      using std::isfinite;
+      if (!isfinite(static_cast<T>(it.value()))) return false;
+    }
+  return true;
+}
+
+}  // namespace newton_detail
+
 // Solves F(x) = 0 from x (updated in place). `evaluate(x, F, J)` fills the
 // residual F(x) and its Jacobian J = dF/dx. Iteration: x ← x − J⁻¹ F(x).
 // `scale[i]` is the size below which x_i's rounding is not measured: every
 // correction component must fall below correction_ulps · ε · max(scale_i, |x_i|).
-template <class T, int m, class Evaluate>
+// The Jacobian is dense (Matrix<T, m, m>) or, given as the third template argument,
+// Eigen::SparseMatrix<T>.
+template <class T, int m, class Jacobian = Matrix<T, m, m>, class Evaluate>
 SolveReport<T> newton_solve(Vector<T, m>& x, Evaluate&& evaluate, const NewtonOptions& options,
                             const Vector<T, m>& scale) {
   using std::isfinite;
@@ -97,26 +130,24 @@ SolveReport<T> newton_solve(Vector<T, m>& x, Evaluate&& evaluate, const NewtonOp
   int without_progress = 0;
   const int count = static_cast<int>(x.size());
   Vector<T, m> residual = zero_vector<T, m>(count);
-  Matrix<T, m, m> jacobian = zero_matrix<T, m, m>(count, count);
+  Jacobian jacobian = newton_detail::empty_jacobian<T, m>(static_cast<Jacobian*>(nullptr), count);
   for (report.iterations = 1; report.iterations <= options.max_iterations; ++report.iterations) {
     evaluate(x, residual, jacobian);
     // A formula evaluated outside its domain (√ or log of a negative number) gives NaN: say so,
     // rather than "singular Jacobian", which would send the user to the wrong place.
-    if (!residual.allFinite() || !jacobian.allFinite()) {
+    if (!residual.allFinite() || !newton_detail::all_finite(jacobian)) {
       report.failure = std::string(
           "the residual or its Jacobian is not finite at the iterate (a formula evaluated "
           "outside its domain, such as √ or log of a negative number, or an overflow)");
       report.residual = max_norm<T, m>(residual);
       return report;
     }
-    Eigen::FullPivLU<Matrix<T, m, m>> lu(jacobian);
-    lu.setThreshold(T(16) * epsilon<T>());
-    if (!lu.isInvertible()) {
+    Vector<T, m> correction = zero_vector<T, m>(count);
+    if (!solve_linear(jacobian, residual, correction, T(16) * epsilon<T>())) {
       report.failure = "singular Jacobian (the discrete Lagrangian is not regular here)";
       report.residual = max_norm<T, m>(residual);
       return report;
     }
-    Vector<T, m> correction = lu.solve(residual);
     x -= correction;
     report.correction = max_norm<T, m>(correction);
     report.corrections.push_back(report.correction);
@@ -185,9 +216,9 @@ const SolveReport<T>& require_converged(const SolveReport<T>& report, const std:
 }
 
 // The same with every scale 1.
-template <class T, int m, class Evaluate>
+template <class T, int m, class Jacobian = Matrix<T, m, m>, class Evaluate>
 SolveReport<T> newton_solve(Vector<T, m>& x, Evaluate&& evaluate, const NewtonOptions& options = {}) {
-  return newton_solve<T, m>(x, std::forward<Evaluate>(evaluate), options, Vector<T, m>::Ones(x.size()));
+  return newton_solve<T, m, Jacobian>(x, std::forward<Evaluate>(evaluate), options, Vector<T, m>::Ones(x.size()));
 }
 
 }  // namespace vivv

@@ -45,6 +45,21 @@ auto del_step(const System& system, const DelScheme<typename System::Scalar>& sc
   constexpr int n = System::dimension;
   Vector<T, n> target = p_end(system, scheme.past, q_previous, q_current, h);
   Vector<T, n> q_next = 2 * q_current - q_previous;
+  if constexpr (SparselyDifferentiated<System>) {
+    // Sized at run time with L a tape: the Newton matrix is sparse where L's couplings are, and
+    // is factored as such (core/qxq/sparse_legendre.hpp, core/numerics/newton.hpp).
+    if (sparse_path_applies(system, scheme.future)) {
+      auto report = newton_solve<T, n, Eigen::SparseMatrix<T>>(
+          q_next,
+          [&](const Vector<T, n>& x, Vector<T, n>& residual, Eigen::SparseMatrix<T>& jacobian) {
+            auto legendre = sparse_begin_momentum(system, scheme.future, q_current, x, h);
+            residual = legendre.p_begin - target;
+            jacobian = std::move(legendre.dp_begin_dq_e);
+          },
+          options_along_a_run());
+      return std::pair{q_next, report};
+    }
+  }
   // Nothing reads the residual at q_{k+1}; the quadratic convergence of a step along a run
   // makes the predicted stop safe (core/numerics/newton.hpp). Both save an L_d evaluation per step.
   auto report = newton_solve<T, n>(
@@ -98,6 +113,18 @@ auto start_from_momentum(const System& system, const QxQDiscretization<typename 
   constexpr int n = System::dimension;
   Vector<T, n> p0 = momentum(system, q0, w0);
   Vector<T, n> q1 = q0 + h * w0;
+  if constexpr (SparselyDifferentiated<System>) {
+    if (sparse_path_applies(system, future)) {
+      auto report = newton_solve<T, n, Eigen::SparseMatrix<T>>(
+          q1, [&](const Vector<T, n>& x, Vector<T, n>& residual, Eigen::SparseMatrix<T>& jacobian) {
+            auto legendre = sparse_begin_momentum(system, future, q0, x, h);
+            residual = legendre.p_begin - p0;
+            jacobian = std::move(legendre.dp_begin_dq_e);
+          });
+      require_converged(report, "start from p_begin(q0, q1) = p(0) with h = " + to_decimal<T>(h, 17));
+      return q1;
+    }
+  }
   auto report = newton_solve<T, n>(
       q1, [&](const Vector<T, n>& x, Vector<T, n>& residual, Matrix<T, n, n>& jacobian) {
         auto legendre = begin_momentum(system, future, q0, x, h);

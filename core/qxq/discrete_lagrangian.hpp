@@ -17,6 +17,7 @@
 
 #include "core/qxq/discrete_legendre.hpp"
 #include "core/qxq/galerkin.hpp"
+#include "core/qxq/sparse_legendre.hpp"
 #include "core/autodiff/jet.hpp"
 #include "core/lagrangian/lagrangian.hpp"
 #include "core/autodiff/tape.hpp"
@@ -73,6 +74,9 @@ struct QxQDiscretization {
   // `expression`: L_d recorded over (q_b, q_e, h) (core/formulas/formula_discretization.hpp), the
   // formula as written, and the order its author declares.
   std::shared_ptr<const Tape<T>> expression;
+  // Its gradient and sparse Hessian over (q_b, q_e, h), for systems sized at run time
+  // (core/qxq/sparse_legendre.hpp); null where nobody recorded them.
+  std::shared_ptr<const SecondDerivativeTape<T>> expression_derivatives;
   std::string formula;
   int declared_order = 0;
   // `galerkin`: the curve degree, quadrature and its nodes and basis values, computed in T.
@@ -94,6 +98,20 @@ struct QxQDiscretization {
         return parameter == T(1) / 2 ? 2 : 1;
       default:
         return 1;
+    }
+  }
+
+  // The points (c_k, f_k) of a rule that is h Σ_k c_k L((1 − f_k) q_b + f_k q_e, (q_e − q_b)/h);
+  // empty for one that is not (an expression, Galerkin).
+  std::vector<std::pair<T, T>> segment_points() const {
+    switch (rule) {
+      case QxQRule::left_rectangle: return {{T(1), T(0)}};
+      case QxQRule::right_rectangle: return {{T(1), T(1)}};
+      case QxQRule::midpoint: return {{T(1), T(1) / 2}};
+      case QxQRule::alpha: return {{T(1), parameter}};
+      case QxQRule::trapezoid: return {{T(1) / 2, T(0)}, {T(1) / 2, T(1)}};
+      case QxQRule::weighted: return {{1 - parameter, T(0)}, {parameter, T(1)}};
+      default: return {};
     }
   }
 
@@ -124,6 +142,7 @@ QxQDiscretization<T> without_twin(const QxQDiscretization<T>& d) {
   plain.rule = d.rule;
   plain.parameter = d.parameter;
   plain.expression = d.expression;
+  plain.expression_derivatives = d.expression_derivatives;
   plain.formula = d.formula;
   plain.declared_order = d.declared_order;
   plain.galerkin = d.galerkin;
@@ -217,6 +236,9 @@ auto discrete_legendre(const System& system,
   using T = typename System::Scalar;
   constexpr int N = System::dimension;
   const int n = static_cast<int>(q_b.size());
+  if constexpr (SparselyDifferentiated<System>) {
+    if (sparse_path_applies(system, discretization)) return sparse_discrete_legendre(system, discretization, q_b, q_e, h);
+  }
   if (discretization.rule == QxQRule::galerkin) {
     // The envelope theorem and the Schur complement (core/qxq/galerkin.hpp); a twin term
     // a·h^s·(q_e − q_b) adds a·h^s to both momenta and nothing to their derivatives.
@@ -301,6 +323,13 @@ auto discrete_momenta(const System& system,
   constexpr int N = System::dimension;
   const int n = static_cast<int>(q_b.size());
   DiscreteMomenta<T, N> d(n);
+  if constexpr (SparselyDifferentiated<System>) {
+    if (sparse_path_applies(system, discretization)) {
+      const auto L = sparse_discrete_derivatives(system, discretization, q_b, q_e, h, SecondDerivatives::none);
+      d.value = L.value, d.p_begin = -L.gradient.head(n), d.p_end = L.gradient.tail(n);
+      return d;
+    }
+  }
   if (discretization.rule == QxQRule::galerkin) {
     const DiscreteLegendre<T, N> full = discrete_legendre(system, discretization, q_b, q_e, h);
     d.value = full.value, d.p_begin = full.p_begin, d.p_end = full.p_end;

@@ -21,6 +21,32 @@ auto velocity_for_momentum(const System& system, const VectorOf<System>& q,
   using T = typename System::Scalar;
   constexpr int N = System::dimension;
   const int n = static_cast<int>(q.size());
+  if constexpr (SparselyDifferentiated<System>) {
+    if (system.derivatives) {
+      // ∂²L/∂w² from L's sparse Hessian, factored sparse (core/numerics/newton.hpp).
+      std::vector<T> x(2 * n);
+      for (int i = 0; i < n; ++i) x[i] = q[i];
+      auto report = newton_solve<T, N, Eigen::SparseMatrix<T>>(
+          guess,
+          [&](const Vector<T, N>& w, Vector<T, N>& residual, Eigen::SparseMatrix<T>& jacobian) {
+            for (int i = 0; i < n; ++i) x[n + i] = w[i];
+            const EdgePushed<T> L = system.derivatives->evaluate(x.data());
+            std::vector<Eigen::Triplet<T>> mass;
+            for (std::size_t e = 0; e < L.hessian.size(); ++e) {
+              const auto [r, c] = system.derivatives->pattern[e];
+              if (c < n) continue;
+              mass.emplace_back(r - n, c - n, L.hessian[e]);
+              if (r != c) mass.emplace_back(c - n, r - n, L.hessian[e]);
+            }
+            for (int i = 0; i < n; ++i) residual[i] = L.gradient[n + i] - p[i];
+            jacobian.resize(n, n);
+            jacobian.setFromTriplets(mass.begin(), mass.end());
+          },
+          options_along_a_run());
+      require_converged(report, "inverse Legendre transform w(q, p)");
+      return guess;
+    }
+  }
   auto report = newton_solve<T, N>(
       guess,
       [&](const Vector<T, N>& w, Vector<T, N>& residual, Matrix<T, N, N>& jacobian) {

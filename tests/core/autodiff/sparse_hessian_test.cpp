@@ -23,11 +23,9 @@
 namespace vivv {
 namespace {
 
-using AllScalars = ::testing::Types<double, long double, quad, mpfr_real>;
-
 template <class T>
 class SparseHessianTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(SparseHessianTest, AllScalars, testing::ScalarNames);
+TYPED_TEST_SUITE(SparseHessianTest, testing::AllScalars, testing::ScalarNames);
 
 // A chain of n coordinates whose L uses every operation the tape has.
 FormulaSystemDefinition every_operation_chain(int n) {
@@ -49,14 +47,14 @@ FormulaSystemDefinition every_operation_chain(int n) {
 
 // A point exact in every scalar: q_i = (i mod 5 − 2)/10, w_i = (i mod 3 − 1)/4.
 template <class T>
-std::vector<T> point(int n) {
+std::vector<T> exact_point(int n) {
   std::vector<T> x(2 * n);
   for (int i = 0; i < n; ++i) x[i] = T(i % 5 - 2) / 10, x[n + i] = T(i % 3 - 1) / 4;
   return x;
 }
 
 template <class T>
-T relative(const T& a, const T& b) {
+T relative_difference(const T& a, const T& b) {
   using std::abs, std::max;
   return abs(T(a - b)) / max(T(1), T(abs(b)));
 }
@@ -76,7 +74,7 @@ template <class T>
 void expect_dense_jets_numbers(int n) {
   const auto system = make_formula_system<T, any_size>(every_operation_chain(n));
   const Tape<T>& tape = *system.program;
-  const std::vector<T> x = point<T>(n);
+  const std::vector<T> x = exact_point<T>(n);
   const int m = 2 * n;
   using J = Jet<T, any_size>;
   std::vector<J> jets;
@@ -87,13 +85,13 @@ void expect_dense_jets_numbers(int n) {
   const EdgePushed<T> evaluated = recorded.evaluate(x.data());
   const EdgePushed<T> gradient_only = recorded.evaluate_gradient(x.data());
   const T tolerance = 64 * epsilon<T>();
-  EXPECT_LE(relative(pushed.value, dense.value), tolerance);
+  EXPECT_LE(relative_difference(pushed.value, dense.value), tolerance);
   EXPECT_EQ(evaluated.value, pushed.value);
   EXPECT_EQ(gradient_only.value, pushed.value);
   ASSERT_EQ(static_cast<int>(pushed.gradient.size()), m);
   for (int k = 0; k < m; ++k) {
-    EXPECT_LE(relative(pushed.gradient[k], dense.gradient[k]), tolerance) << k;
-    EXPECT_LE(relative(evaluated.gradient[k], dense.gradient[k]), tolerance) << k;
+    EXPECT_LE(relative_difference(pushed.gradient[k], dense.gradient[k]), tolerance) << k;
+    EXPECT_LE(relative_difference(evaluated.gradient[k], dense.gradient[k]), tolerance) << k;
     EXPECT_EQ(gradient_only.gradient[k], evaluated.gradient[k]) << k;
   }
   const auto pushed_entries = as_map(pushed.pattern, pushed.hessian);
@@ -105,10 +103,10 @@ void expect_dense_jets_numbers(int n) {
       if (found == pushed_entries.end()) {
         EXPECT_EQ(dense.second(r, c), 0) << r << ", " << c << " missing";
       }
-      EXPECT_LE(relative(sparse, dense.second(r, c)), tolerance) << r << ", " << c;
+      EXPECT_LE(relative_difference(sparse, dense.second(r, c)), tolerance) << r << ", " << c;
       const auto again = recorded_entries.find({r, c});
       const T from_tape = again == recorded_entries.end() ? T(0) : again->second;
-      EXPECT_LE(relative(from_tape, dense.second(r, c)), tolerance) << r << ", " << c;
+      EXPECT_LE(relative_difference(from_tape, dense.second(r, c)), tolerance) << r << ", " << c;
     }
 }
 
@@ -122,7 +120,7 @@ TYPED_TEST(SparseHessianTest, SixtyFourCoordinatesAgreeWithForwardMode) {
   using T = TypeParam;
   const int n = 64, m = 2 * n;
   const auto system = make_formula_system<T, any_size>(every_operation_chain(n));
-  const std::vector<T> x = point<T>(n);
+  const std::vector<T> x = exact_point<T>(n);
   using J = Jet<T, any_size, 1>;
   std::vector<J> jets;
   for (int k = 0; k < m; ++k) jets.push_back(J::variable(x[k], k, m));
@@ -130,14 +128,14 @@ TYPED_TEST(SparseHessianTest, SixtyFourCoordinatesAgreeWithForwardMode) {
   const SecondDerivativeTape<T> recorded(*system.program);
   const EdgePushed<T> evaluated = recorded.evaluate(x.data());
   const T tolerance = 64 * epsilon<T>();
-  for (int k = 0; k < m; ++k) EXPECT_LE(relative(evaluated.gradient[k], forward.gradient[k]), tolerance) << k;
+  for (int k = 0; k < m; ++k) EXPECT_LE(relative_difference(evaluated.gradient[k], forward.gradient[k]), tolerance) << k;
   const std::vector<J> gradient = recorded.gradient_program.evaluate(jets);
   const auto entries = as_map(recorded.pattern, evaluated.hessian);
   for (int r = 0; r < m; ++r)
     for (int c = 0; c <= r; ++c) {
       const auto found = entries.find({r, c});
       const T sparse = found == entries.end() ? T(0) : found->second;
-      EXPECT_LE(relative(sparse, with_size(gradient[1 + r], m).gradient[c]), tolerance) << r << ", " << c;
+      EXPECT_LE(relative_difference(sparse, with_size(gradient[1 + r], m).gradient[c]), tolerance) << r << ", " << c;
     }
   // Each q_i meets q_{i±1}, w_i, w_{i+1}; each w_i meets w_i, q_i, q_{i−1}: a bounded number of
   // entries per coordinate, where a dense Hessian has 2n² + n.
@@ -149,7 +147,7 @@ TYPED_TEST(SparseHessianTest, AWrongEntryIsSeen) {
   using T = TypeParam;
   const int n = 2, m = 4;
   const auto system = make_formula_system<T, any_size>(every_operation_chain(n));
-  const std::vector<T> x = point<T>(n);
+  const std::vector<T> x = exact_point<T>(n);
   using J = Jet<T, any_size>;
   std::vector<J> jets;
   for (int k = 0; k < m; ++k) jets.push_back(J::variable(x[k], k, m));
@@ -157,7 +155,7 @@ TYPED_TEST(SparseHessianTest, AWrongEntryIsSeen) {
   EdgePushed<T> pushed = edge_push(*system.program, x.data());
   pushed.hessian.front() *= 1 + T(1) / 1000;
   const auto& [r, c] = pushed.pattern.front();
-  EXPECT_GT(relative(pushed.hessian.front(), dense.second(r, c)), 64 * epsilon<T>());
+  EXPECT_GT(relative_difference(pushed.hessian.front(), dense.second(r, c)), 64 * epsilon<T>());
 }
 
 }  // namespace

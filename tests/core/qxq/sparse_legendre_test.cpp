@@ -1,0 +1,186 @@
+// The sparse path of systems sized at run time (core/qxq/sparse_legendre.hpp, the sparse
+// branches of core/lagrangian/lagrangian.hpp, core/lagrangian/euler_lagrange_tape.hpp,
+// core/structure/energy.hpp and core/numerics/linear_solve.hpp), against the dense jets the same
+// system is differentiated in when its sparse derivatives are taken away, in double, long double,
+// float128 and MPFR, at 1, 2 and 7 coordinates of a non-separable chain with a gyroscopic term:
+//   - every Q × Q rule that is a sum of L on the segment, and an expression L_d, with and without
+//     a twin term: L_d, both Legendre transforms and all four Hessian blocks, to a few ulps;
+//   - a DEL step and a start from the momentum: the same q_{k+1}, in as many Newton iterations;
+//   - L's derivatives, the momentum, the energy, the Euler–Lagrange acceleration, its tape, and
+//     the inverse Legendre transform;
+//   - the sparse solve refuses a singular matrix, structurally and numerically, as the dense one.
+#include "core/qxq/sparse_legendre.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "cases/formula_parser.hpp"
+#include "core/formulas/formula_discretization.hpp"
+#include "core/formulas/formula_system.hpp"
+#include "core/lagrangian/euler_lagrange_tape.hpp"
+#include "core/qxq/del_evolution.hpp"
+#include "core/qxq/discrete_lagrangian.hpp"
+#include "core/structure/energy.hpp"
+#include "tests/test_scalars.hpp"
+
+namespace vivv {
+namespace {
+
+template <class T>
+class SparseLegendreTest : public testing::ScalarTest<T> {};
+TYPED_TEST_SUITE(SparseLegendreTest, testing::AllScalars, testing::ScalarNames);
+
+// L = Σ w_i²/2·(1 + q_i²/4) + Σ (q_i w_{i+1} − q_{i+1} w_i)/2 − Σ (q_{i+1} − q_i)²/2 − Σ cos q_i.
+FormulaSystemDefinition gyroscopic_chain(int n) {
+  std::vector<std::string> q, w;
+  for (int i = 1; i <= n; ++i) q.push_back("q" + std::to_string(i)), w.push_back("w" + std::to_string(i));
+  std::string text;
+  for (int i = 0; i < n; ++i) {
+    text += (i ? " + " : "") + w[i] + "^2/2*(1 + " + q[i] + "^2/4) - cos(" + q[i] + ")";
+    if (i + 1 < n)
+      text += " + (" + q[i] + "*" + w[i + 1] + " - " + q[i + 1] + "*" + w[i] + ")/2 - (" + q[i + 1] + " - " + q[i] +
+              ")^2/2";
+  }
+  return {"gyroscopic-chain", text, parse_formula(text), q, w, {}, {}, nullptr};
+}
+
+template <class T>
+State<T, any_size> gyroscopic_state(int n) {
+  State<T, any_size> x{zero_vector<T, any_size>(n), zero_vector<T, any_size>(n)};
+  for (int i = 0; i < n; ++i) x.q[i] = T(i % 5 - 2) / 10, x.w[i] = T(i % 3 - 1) / 4;
+  return x;
+}
+
+template <class T, int R, int C>
+T block_distance(const Matrix<T, R, C>& a, const Matrix<T, R, C>& b) {
+  EXPECT_EQ(a.rows(), b.rows());
+  EXPECT_EQ(a.cols(), b.cols());
+  using std::abs;
+  T largest = 0;
+  for (int i = 0; i < a.rows(); ++i)
+    for (int j = 0; j < a.cols(); ++j) largest = nan_max(largest, T(abs(T(a(i, j) - b(i, j)))));
+  return largest;
+}
+
+template <class T>
+std::vector<QxQDiscretization<T>> rules(const FormulaSystem<T, any_size>& system) {
+  std::vector<QxQDiscretization<T>> all;
+  for (QxQRule rule : {QxQRule::left_rectangle, QxQRule::right_rectangle, QxQRule::midpoint, QxQRule::alpha,
+                       QxQRule::trapezoid, QxQRule::weighted}) {
+    QxQDiscretization<T> d;
+    d.rule = rule;
+    d.parameter = T(3) / 10;
+    all.push_back(d);
+  }
+  const std::string text = "h*L((qb + qe)/2, (qe - qb)/h) + h^3*(qe[1] - qb[1])^2";
+  all.push_back(expression_discretization(system, text, parse_formula(text), {}, 2));
+  const int n = system.size();
+  for (std::size_t k = 0, count = all.size(); k < count; ++k) {
+    QxQDiscretization<T> twinned = all[k];
+    std::vector<T> a(n);
+    for (int i = 0; i < n; ++i) a[i] = T(i + 1) / 7;
+    twinned.twin = TwinTerm<T>{a, 2};
+    all.push_back(twinned);
+  }
+  return all;
+}
+
+template <class T>
+void expect_dense_numbers(int n) {
+  const auto sparse = make_formula_system<T, any_size>(gyroscopic_chain(n));
+  auto dense = sparse;
+  dense.derivatives = nullptr;
+  const State<T, any_size> x = gyroscopic_state<T>(n);
+  const T h = T(1) / 8;
+  const Vector<T, any_size> x1 = x.q + h * x.w;
+  const T tolerance = 256 * epsilon<T>();
+  for (QxQDiscretization<T> rule : rules(sparse)) {
+    SCOPED_TRACE(rule_name(rule.rule) + (rule.twin ? " with a twin term" : ""));
+    ASSERT_TRUE(sparse_path_applies(sparse, rule));
+    ASSERT_FALSE(sparse_path_applies(dense, rule));
+    auto dense_rule = rule;
+    dense_rule.expression_derivatives = nullptr;
+    const auto a = discrete_legendre(sparse, rule, x.q, x1, h);
+    const auto b = discrete_legendre(dense, dense_rule, x.q, x1, h);
+    using std::abs;
+    EXPECT_LE(abs(T(a.value - b.value)), tolerance);
+    EXPECT_LE(block_distance(a.p_begin, b.p_begin), tolerance);
+    EXPECT_LE(block_distance(a.p_end, b.p_end), tolerance);
+    EXPECT_LE(block_distance(a.dp_begin_dq_b, b.dp_begin_dq_b), tolerance / h);
+    EXPECT_LE(block_distance(a.dp_begin_dq_e, b.dp_begin_dq_e), tolerance / h);
+    EXPECT_LE(block_distance(a.dp_end_dq_b, b.dp_end_dq_b), tolerance / h);
+    EXPECT_LE(block_distance(a.dp_end_dq_e, b.dp_end_dq_e), tolerance / h);
+    const auto momenta = discrete_momenta(sparse, rule, x.q, x1, h);
+    EXPECT_LE(block_distance(momenta.p_begin, b.p_begin), tolerance);
+    EXPECT_LE(block_distance(momenta.p_end, b.p_end), tolerance);
+    const auto block = sparse_begin_momentum(sparse, rule, x.q, x1, h);
+    EXPECT_LE(block_distance(Matrix<T, any_size, any_size>(block.dp_begin_dq_e), b.dp_begin_dq_e), tolerance / h);
+
+    const auto [y2, sparse_report] = del_step(sparse, matched_scheme(rule), x.q, x1, h);
+    const auto [z2, dense_report] = del_step(dense, matched_scheme(dense_rule), x.q, x1, h);
+    ASSERT_TRUE(sparse_report.converged && dense_report.converged);
+    EXPECT_EQ(sparse_report.iterations, dense_report.iterations);
+    EXPECT_LE(block_distance(y2, z2), 16 * tolerance);
+    EXPECT_LE(block_distance(start_from_momentum(sparse, rule, x.q, x.w, h), start_from_momentum(dense, dense_rule, x.q, x.w, h)),
+              16 * tolerance);
+  }
+
+  const auto c = lagrangian_derivatives(sparse, x.q, x.w);
+  const auto d = lagrangian_derivatives(dense, x.q, x.w);
+  EXPECT_LE(block_distance(c.dL_dq, d.dL_dq), tolerance);
+  EXPECT_LE(block_distance(c.dL_dw, d.dL_dw), tolerance);
+  EXPECT_LE(block_distance(c.d2L_dw2, d.d2L_dw2), tolerance);
+  EXPECT_LE(block_distance(c.d2L_dwdq, d.d2L_dwdq), tolerance);
+  EXPECT_LE(block_distance(momentum(sparse, x.q, x.w), momentum(dense, x.q, x.w)), tolerance);
+  using std::abs;
+  EXPECT_LE(abs(T(energy(sparse, x.q, x.w) - energy(dense, x.q, x.w))), tolerance);
+  const Vector<T, any_size> acceleration = euler_lagrange_acceleration(dense, x.q, x.w);
+  EXPECT_LE(block_distance(euler_lagrange_acceleration(sparse, x.q, x.w), acceleration), tolerance);
+  std::vector<T> y(x.q.data(), x.q.data() + n);
+  y.insert(y.end(), x.w.data(), x.w.data() + n);
+  const std::vector<T> from_sparse_tape = euler_lagrange_tape(sparse).evaluate(y);
+  const std::vector<T> from_dense_tape = euler_lagrange_tape(dense).evaluate(y);
+  for (int i = 0; i < n; ++i) {
+    EXPECT_LE(abs(T(from_sparse_tape[i] - acceleration[i])), tolerance) << i;
+    EXPECT_LE(abs(T(from_dense_tape[i] - acceleration[i])), tolerance) << i;
+  }
+  const Vector<T, any_size> p = momentum(dense, x.q, x.w);
+  const Vector<T, any_size> guess = x.w + Vector<T, any_size>::Constant(n, T(1) / 50);
+  EXPECT_LE(block_distance(velocity_for_momentum(sparse, x.q, p, guess), x.w), tolerance);
+}
+
+TYPED_TEST(SparseLegendreTest, GivesTheDenseJetsNumbersAtOneTwoAndSevenCoordinates) {
+  for (int n : {1, 2, 7}) {
+    SCOPED_TRACE(std::to_string(n) + " coordinates");
+    expect_dense_numbers<TypeParam>(n);
+  }
+}
+
+// The sparse solve refuses what the dense one refuses: a matrix with an empty row, and one whose
+// rank is one short by cancellation (rows 1 and 3 equal up to rounding).
+TYPED_TEST(SparseLegendreTest, ASingularSparseMatrixIsRefused) {
+  using T = TypeParam;
+  const T threshold = T(16) * epsilon<T>();
+  const Vector<T, any_size> right = Vector<T, any_size>::Ones(3);
+  Vector<T, any_size> solution = zero_vector<T, any_size>(3);
+  Matrix<T, any_size, any_size> dense(3, 3);
+  dense << 2, 1, 0, 1, 3, 1, 2, 1, 0;
+  dense(2, 0) += epsilon<T>();
+  Eigen::SparseMatrix<T> sparse = dense.sparseView();
+  EXPECT_FALSE(solve_linear(dense, right, solution, threshold));
+  EXPECT_FALSE(solve_linear(sparse, right, solution, threshold));
+  Eigen::SparseMatrix<T> empty_row(3, 3);
+  empty_row.insert(0, 0) = 1, empty_row.insert(1, 1) = 1;
+  EXPECT_FALSE(solve_linear(empty_row, right, solution, threshold));
+  // The control: a regular matrix of the same pattern is solved, as densely.
+  dense(2, 0) = 0;
+  dense(2, 2) = 1;
+  sparse = dense.sparseView();
+  ASSERT_TRUE(solve_linear(sparse, right, solution, threshold));
+  EXPECT_LE(block_distance(Vector<T, any_size>(dense * solution), right), 16 * epsilon<T>());
+}
+
+}  // namespace
+}  // namespace vivv
