@@ -156,7 +156,6 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
         "long double; at 1000 the paper example's midpoint case takes 3 min and at 2000 "
         "its reference flow alone took 11 min");
   }
-  check_memory(spec, file, spec.scalar, spec.digits);
   spec.discretization = read_discretization(reader.object("discretization"), spec.dimension, spec.parameters);
   // A program that computes in double is judged in double: "scalar" need not repeat what
   // "precision" says (another scalar, written or given as --scalar, is refused by
@@ -341,6 +340,8 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   reader.finish();
   spec.decimals = reader.decimals();
   spec.written = reader.written();
+  // What the run will hold depends on its discretizations, claims and steps, all read by now.
+  check_memory(spec, file, spec.scalar, spec.digits);
   check_precision_options(spec, std::nullopt, std::nullopt);
   return spec;
 }

@@ -30,10 +30,12 @@ const RegisteredSystem* registered_system(Reader& system);
 // regular there, checked in long double before any work.
 void check_initial_state(const CaseSpec& spec, const std::string& file);
 
-// A formula system whose dense second derivatives would not fit in this machine's memory, in
-// `scalar` at `digits`: bad input naming the estimate (field system.coordinates). The estimate is
-// the tape's operations times one jet of L's 2n variables, 1 + 2n + (2n)² numbers: what evaluating
-// L in the jets the DEL and the Legendre transforms take keeps at once.
+// A formula system whose run would not fit in this machine's memory, in `scalar` at `digits`: bad
+// input naming the estimate and what needs it (field system.coordinates). The estimate is the
+// largest of: the tape's operations times a first-order jet of L's 2n variables (1 + 2n numbers);
+// with a discretization still differentiated in dense jets (Galerkin, TQ, maps), times a
+// second-order one (1 + 2n + (2n)² numbers); with symplecticity, a dense 2n × 2n Jacobian per step
+// of the longest run. The other Q × Q rules read L's sparse derivatives.
 void check_memory(const CaseSpec& spec, const std::string& file, const std::string& scalar, int digits,
                   const std::string& purpose = "");
 

@@ -273,9 +273,24 @@ void check_regular(const System& system, const CaseSpec& spec, const std::string
   const int n = spec.dimension;
   Vector<T, N> q(n), w(n);
   for (int i = 0; i < n; ++i) q[i] = from_decimal<T>(spec.q[i]), w[i] = from_decimal<T>(spec.w[i]);
-  const auto d = lagrangian_derivatives(system, q, w);
   const std::string field = spec.formula ? "system.lagrangian" : "initial";
   using std::isfinite;
+  if constexpr (SparselyDifferentiated<System>) {
+    // Sized at run time: d²L/dw² sparse, factored sparse; no determinant, which over- or
+    // underflows for many coordinates although the matrix is well conditioned.
+    try {
+      (void)sparse_euler_lagrange_acceleration(system, q, w);
+    } catch (const SingularLagrangianError& error) {
+      const std::string what = error.what();
+      if (what.find("not finite") != std::string::npos)
+        throw CaseError(file, field, "L is not finite at the initial state: the state is outside the Lagrangian's domain");
+      throw CaseError(file, field, "the Lagrangian is not regular at the initial state: d2L/dw2 is singular there (a "
+                                   "pivot of its LU at most 1024 epsilon times the largest), so the Euler–Lagrange "
+                                   "equations do not determine the acceleration");
+    }
+    return;
+  }
+  const auto d = lagrangian_derivatives(system, q, w);
   if (!isfinite(d.value))
     throw CaseError(file, field, "L is not finite at the initial state: the state is outside the Lagrangian's domain");
   const T determinant = d.d2L_dw2.determinant();
@@ -323,13 +338,42 @@ static double bytes_per_number(const std::string& scalar, int digits) {
   return static_cast<double>(sizeof(mpfr_real)) + 8 * limbs;
 }
 
+// Whether a discretization still differentiates L in dense jets at run-time sizes: Galerkin's
+// extremal, the TQ formalism and the maps vivv did not write (first-order jets of 2n + 1 numbers
+// aside, which every path may use). The other Q × Q rules read L's sparse derivatives
+// (core/qxq/sparse_legendre.hpp).
+static bool dense_second_derivatives(const DiscretizationSpec& d) {
+  return d.formalism != "qxq" || d.kind == "galerkin";
+}
+
 void check_memory(const CaseSpec& spec, const std::string& file, const std::string& scalar, int digits,
                   const std::string& purpose) {
   if (!spec.formula || spec.dimension <= 2) return;
   const double n = spec.dimension;
   const double operations =
       static_cast<double>(make_formula_system<long double, any_size>(*spec.formula).program->nodes.size());
-  const double needed = operations * (1 + 2 * n + 4 * n * n) * bytes_per_number(scalar, digits);
+  const double number = bytes_per_number(scalar, digits);
+  // The largest of what the run holds at once: first-order jets through L's tape; with a dense
+  // discretization, second-order jets of 1 + 2n + (2n)² numbers per operation; and for
+  // symplecticity the dense 2n × 2n Jacobian of every step of the longest run.
+  double needed = operations * (1 + 2 * n) * number;
+  std::string what = "for vivv's first derivatives (each operation a jet of 1 + 2n numbers)";
+  const bool dense = dense_second_derivatives(spec.discretization) ||
+                     (spec.past_discretization && dense_second_derivatives(*spec.past_discretization)) ||
+                     (spec.compare_discretization && dense_second_derivatives(*spec.compare_discretization));
+  if (dense && operations * (1 + 2 * n + 4 * n * n) * number > needed) {
+    needed = operations * (1 + 2 * n + 4 * n * n) * number;
+    what = "for vivv's dense second derivatives (each operation a jet of 1 + 2n + (2n)^2 numbers)";
+  }
+  const bool symplecticity = std::find(spec.claims.begin(), spec.claims.end(), "symplecticity") != spec.claims.end();
+  if (symplecticity && !spec.steps.empty()) {
+    const double jacobians = static_cast<double>(spec.steps.back()) * 4 * n * n * number;
+    if (jacobians > needed) {
+      needed = jacobians;
+      what = "for symplecticity's Jacobians (a dense 2n x 2n matrix for each of the " +
+             std::to_string(spec.steps.back()) + " steps of the longest run)";
+    }
+  }
   const double pages = static_cast<double>(sysconf(_SC_PHYS_PAGES));
   const double page = static_cast<double>(sysconf(_SC_PAGE_SIZE));
   const double available = pages > 0 && page > 0 ? pages * page : 0;
@@ -338,9 +382,8 @@ void check_memory(const CaseSpec& spec, const std::string& file, const std::stri
     throw CaseError(file, "system.coordinates",
                     "a system of " + std::to_string(spec.dimension) + " coordinates whose L takes " +
                         std::to_string(static_cast<long>(operations)) + " operations needs about " + gib(needed) +
-                        " in " + scalar + purpose +
-                        " for vivv's dense second derivatives (each operation a jet of 1 + 2n + (2n)^2 numbers), "
-                        "more than this machine's " + gib(available) + " of memory");
+                        " in " + scalar + purpose + " " + what + ", more than this machine's " + gib(available) +
+                        " of memory");
   }
 }
 
