@@ -5,7 +5,7 @@
 //            [--max-seconds S] [--progress]
 //   vivv report REPORT.json [MORE.json ...] --out DIR   (merge and re-render)
 //   vivv list
-//   vivv bench reference|del|process
+//   vivv bench reference|del|process|size
 //
 // Exit codes: 0 every claim holds (or fails as the case expects: xfail), 1 a
 // claim fails, errs or passes although marked xfail, 2 bad input (the message
@@ -51,10 +51,11 @@ int main(int argc, char** argv) {
     }
     if (command == "bench") {
       if (args.size() != 1 ||
-          (args[0] != "reference" && args[0] != "del" && args[0] != "process")) {
+          (args[0] != "reference" && args[0] != "del" && args[0] != "process" && args[0] != "size")) {
         std::cerr << "vivv bench: expected one of: reference (the Taylor reference flow against "
                      "Boost.Odeint), del (a DEL step against the L evaluations it needs), process "
-                     "(protocol vivv-map/1's overhead per step against a DEL step)\n";
+                     "(protocol vivv-map/1's overhead per step against a DEL step), size (the cost of a DEL step, a "
+                     "reference step and a symplecticity check against the number of coordinates)\n";
         return exit_bad_input;
       }
       // The benchmarks are a program of their own beside vivv (bench/commands/main.cpp), so that

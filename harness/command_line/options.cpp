@@ -204,7 +204,7 @@ int usage(std::ostream& out, int code) {
          "                [--progress|--quiet] [--verbose]\n"
          "       vivv report REPORT.json [MORE.json ...] --out DIR [--verbose]\n"
          "       vivv list\n"
-         "       vivv bench reference|del|process\n"
+         "       vivv bench reference|del|process|size\n"
          "       vivv --version\n"
          "run `vivv run --help` for what each option does\n";
   return code;
