@@ -29,8 +29,17 @@ namespace fs = std::filesystem;
 namespace vivv {
 namespace {
 
-// The longest line vivv reads from a program: an answer is a few decimal strings.
-constexpr std::size_t longest_line = 1 << 20;
+// The longest line vivv reads from a program: an answer is 2n decimal strings, and with the
+// extension "jacobian" (2n)² more, each of the greeting's D digits with its sign, point, exponent,
+// quotes and comma. Twice that for spaces a program may add, and never less than 1 MiB: a
+// 38-atom cluster in space (n = 114) sends a Jacobian of 1.3 MB at D = 17, which a fixed 1 MiB
+// refused as "a line longer than 1048576 characters".
+std::size_t longest_line_for(const nlohmann::json& greeting) {
+  const double n = greeting.value("dimension", 1.0), digits = greeting.value("digits", 17.0);
+  const double numbers = 2 * n + 4 * n * n;
+  const double characters = 2 * numbers * (digits + 16) + 4096;
+  return static_cast<std::size_t>(std::max(characters, double(1 << 20)));
+}
 constexpr std::size_t stderr_kept = 2000;
 
 // The process groups of the running programs, for the signal handler: 0 is a free slot.
@@ -227,7 +236,7 @@ void end_program_tree(pid_t leader, const std::string& token) noexcept {
 }
 
 MapProcess::MapProcess(Options options, const nlohmann::json& greeting)
-    : options_(std::move(options)) {
+    : options_(std::move(options)), longest_line_(longest_line_for(greeting)) {
   const std::string program = resolve_program(options_.command.front(), options_.directory);
   if (options_.command.front().find('/') == std::string::npos)
     resolved_note_ = "; " + repaired_utf8(quoted_text(options_.command.front(), 100)) + " is " + repaired_utf8(program);
@@ -498,9 +507,10 @@ std::string MapProcess::receive(const std::string& request_name) {
                                            static_cast<long long>(options_.timeout_seconds * 1000));
   std::size_t end = 0;
   while ((end = buffer_.find('\n')) == std::string::npos) {
-    if (buffer_.size() > longest_line)
-      fail(request_name,
-           "it wrote a line longer than " + std::to_string(longest_line) + " characters");
+    if (buffer_.size() > longest_line_)
+      fail(request_name, "it wrote a line longer than " + std::to_string(longest_line_) +
+                             " characters (2 × (2n + (2n)²) numbers of D + 16 characters, at least "
+                             "1 MiB)");
     std::array<pollfd, 2> ready{pollfd{output_, POLLIN, 0}, pollfd{errors_, POLLIN, 0}};
     const int left = milliseconds_until(deadline);
     if (left == 0) {

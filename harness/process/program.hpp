@@ -90,6 +90,7 @@ class MapProcess {
   pid_t pid_ = -1;
   int input_ = -1, output_ = -1, errors_ = -1;  // vivv's ends of the three pipes
   std::string buffer_;                          // what was read of the answer line so far
+  std::size_t longest_line_ = 0;  // the longest answer line read: from the greeting's n and D
   std::string stderr_tail_;  // the last 2000 characters the program wrote to its stderr
   std::string last_request_;
   std::string token_;  // descendant_token=<vivv's pid>-<count>, in the program's environment
