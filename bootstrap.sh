@@ -3,7 +3,9 @@
 #   bash bootstrap.sh run       install what is missing, build the vivv tool, run the default suite
 #                               (writes vivv-report/)
 #   bash bootstrap.sh test      install what is missing, build everything, run every test (ctest)
-#   bash bootstrap.sh sanitize  the slow job: the vivv tool built again under AddressSanitizer and
+#                               but those labelled slow
+#   bash bootstrap.sh slow      the slow jobs: the tests labelled slow, then what sanitize does
+#   bash bootstrap.sh sanitize  the vivv tool built again under AddressSanitizer and
 #                               UndefinedBehaviorSanitizer, and the default suite, the test cases and
 #                               the fuzz corpus run under them, after a negative control
 #                               (tests/sanitize.sh)
@@ -11,7 +13,7 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 mode=${1:-}
-case "$mode" in run|test|sanitize) ;; *) echo "usage: bash bootstrap.sh run|test|sanitize" >&2; exit 2 ;; esac
+case "$mode" in run|test|slow|sanitize) ;; *) echo "usage: bash bootstrap.sh run|test|slow|sanitize" >&2; exit 2 ;; esac
 
 # Debian packages vivv builds and tests with (DESIGN §2; nothing else, nothing downloaded).
 packages=(g++ cmake make ninja-build libeigen3-dev libboost-dev libmpfr-dev libgmp-dev nlohmann-json3-dev
@@ -20,7 +22,7 @@ packages=(g++ cmake make ninja-build libeigen3-dev libboost-dev libmpfr-dev libg
 # "scale" tests start shards with GNU parallel, the "python" tests run the integrators of
 # examples/python-integrator (mpmath, NumPy) through the process protocol, the package python/
 # under pytest, and its offline installation into a venv (venv, setuptools, wheel).
-if [ "$mode" = test ]; then
+if [ "$mode" = test ] || [ "$mode" = slow ]; then
   packages+=(chromium parallel python3-mpmath python3-numpy python3-pytest python3-venv python3-setuptools
              python3-wheel)
 fi
@@ -50,4 +52,10 @@ if [ "$mode" = run ]; then
   exec build/harness/vivv run --out vivv-report --jobs "$jobs" --progress
 fi
 cmake --build build -j "$jobs"
-cd build && exec ctest --output-on-failure -j "$jobs"
+if [ "$mode" = slow ]; then
+  # The slow jobs: the tests labelled "slow" (systems of a hundred coordinates and more, minutes
+  # each), then the sanitizer build.
+  (cd build && ctest --output-on-failure -j "$jobs" -L slow)
+  exec bash tests/sanitize.sh "$PWD" "$PWD/build-sanitize"
+fi
+cd build && exec ctest --output-on-failure -j "$jobs" -LE slow
