@@ -34,7 +34,6 @@ class Cluster:
                                    f"parameters {sorted(params)}")
         self.atoms = dimension // 3
         self.eps, self.sigma = float(params["eps"]), float(params["sigma"])
-        self.upper = np.triu_indices(self.atoms, 1)
 
     def _pairs(self, q):
         x = q.reshape(self.atoms, 3)
@@ -52,19 +51,19 @@ class Cluster:
         return np.einsum("ij,ijk->ik", c, d).reshape(-1)
 
     def stiffness(self, q):
-        """dF/dq, 3N x 3N: each pair's block -V''(r) dd^T/r^2 - V'(r)/r (I - dd^T/r^2), negated."""
+        """dF/dq, 3N x 3N. F_i = sum_j a_ij d_ij with a = 24 eps (2 s^12 - s^6)/r^2, so for j != i
+        dF_i/dx_j = -(a_ij I - b_ij d_ij d_ij^T), b = -(1/r) da/dr = 24 eps (28 s^12 - 8 s^6)/r^4, and
+        dF_i/dx_i = -sum_{j != i} dF_i/dx_j."""
         d, r2, s6 = self._pairs(q)
-        a = 24 * self.eps * (2 * s6 * s6 - s6) / r2                      # -V'(r)/r
-        b = 24 * self.eps * (28 * s6 * s6 - 8 * s6) / (r2 * r2)          # (V''(r) - V'(r)/r)/r^2 ... sign below
+        a = 24 * self.eps * (2 * s6 * s6 - s6) / r2
+        b = 24 * self.eps * (28 * s6 * s6 - 8 * s6) / (r2 * r2)
         np.fill_diagonal(a, 0.0)
         np.fill_diagonal(b, 0.0)
-        # F_i = sum_j a_ij d_ij; dF_i/dx_j (j != i) = -(a_ij I - b_ij d_ij d_ij^T)
         blocks = -(a[:, :, None, None] * np.eye(3) - b[:, :, None, None] * d[:, :, :, None] * d[:, :, None, :])
         n = self.atoms
-        K = blocks.transpose(0, 2, 1, 3).reshape(3 * n, 3 * n)
-        for i in range(n):  # dF_i/dx_i = -sum_{j != i} dF_i/dx_j
-            K[3 * i:3 * i + 3, 3 * i:3 * i + 3] = -blocks[i].sum(axis=0)
-        return K
+        atoms = np.arange(n)
+        blocks[atoms, atoms] = -blocks.sum(axis=1)
+        return blocks.transpose(0, 2, 1, 3).reshape(3 * n, 3 * n)
 
 
 def options(argv):

@@ -193,11 +193,9 @@ trajectory_momenta(const CaseContext<System>& context,
 // 0.036 nm (9–13% of the motion's size), orders 0.06, 0.19, 0.28 and an interval [0.03, 0.32],
 // and failed.
 inline bool orders_still_rising(const OrderFit& fit) {
-  const std::size_t count = std::min<std::size_t>(
-      static_cast<std::size_t>(std::max(fit.above_floor - 1, 0)), fit.pairwise_orders.size());
-  if (count < 3) return false;
-  const double a = fit.pairwise_orders[count - 3], b = fit.pairwise_orders[count - 2],
-               c = fit.pairwise_orders[count - 1];
+  const std::vector<double> orders = orders_above_floor(fit);
+  if (orders.size() < 3) return false;
+  const double a = orders[orders.size() - 3], b = orders[orders.size() - 2], c = orders.back();
   return a > 0 && b - a > receding_noise && c - b > receding_noise;
 }
 

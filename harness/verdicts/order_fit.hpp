@@ -198,6 +198,14 @@ OrderVerdict judge_order(const OrderFit& fit, double predicted, bool exact, doub
 // controls move their last pairwise order away from the prediction by at most 0.0002.
 constexpr double receding_noise = 0.01;
 
+// The pairwise orders between the points above the floor, largest h first (the pre-asymptotic
+// ones included: a rule that dropped leading points must not hide where the orders go).
+inline std::vector<double> orders_above_floor(const OrderFit& fit) {
+  const std::size_t count = static_cast<std::size_t>(std::max(fit.above_floor - 1, 0));
+  return {fit.pairwise_orders.begin(),
+          fit.pairwise_orders.begin() + static_cast<std::ptrdiff_t>(std::min(count, fit.pairwise_orders.size()))};
+}
+
 // The smallest b for which e(h) = h^p·(1 + b·h_min/h), on the step sizes of `fit` above the floor,
 // would not pass judge_order (NaN where none up to 10³ fails it, or the fit has no steps).
 double lower_order_detection_limit(const OrderFit& fit, double predicted, bool exact, double tolerance);

@@ -71,14 +71,6 @@ std::optional<Approach> approach_to(const OrderFit& fit, double predicted, doubl
   return approach;
 }
 
-// The pairwise orders between the points above the floor, largest h first (the pre-asymptotic
-// ones included: a rule that dropped leading points must not hide where the orders go).
-std::vector<double> orders_above_floor(const OrderFit& fit) {
-  const std::size_t count = static_cast<std::size_t>(std::max(fit.above_floor - 1, 0));
-  return {fit.pairwise_orders.begin(),
-          fit.pairwise_orders.begin() + std::min(count, fit.pairwise_orders.size())};
-}
-
 // Receding evidence: the last pairwise order c moves from the one before, b, by more than the
 // noise, the change before it going the same way, away from the prediction p — or toward it on a
 // course whose Aitken limit (from the change before, beyond the noise and contracting) lies beyond
