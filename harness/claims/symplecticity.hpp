@@ -38,6 +38,7 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
   template <LagrangianSystem System, class T = typename System::Scalar, int N = System::dimension>
   static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     const int n = dimension_of(context.system);
+    const std::vector<int> exponents = balancing(context);
     PerStepCheck<T> check;
     std::vector<T> units;  // the rounding unit of the judged (worst) step at each h
     std::vector<JacobianCheck> jacobian_checks;  // the judged step's Jacobian against its map
@@ -53,7 +54,7 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
           scale = scale.cwiseMax(phase_size<T, N>(context, x[k].q, x[k].w, k, x.size() - 1));
         }
         std::size_t worst = 0;
-        units.push_back(judge<T, N>(check, h, jacobians, noise, context.map->jacobian_unit(), worst));
+        units.push_back(judge<T, N>(check, h, jacobians, noise, context.map->jacobian_unit(), exponents, worst));
         // The map on (q, p) itself: w from p by the inverse Legendre transform, one step, p' =
         // FL(q', w').
         const State<T, N>& at = x[worst];
@@ -100,7 +101,7 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
                                max_entry<T, N, N>(past.dp_end_dq_b), max_entry<T, N, N>(past.dp_end_dq_e)}));
         }
         std::size_t worst = 0;
-        units.push_back(judge<T, N>(check, h, jacobians, sizes, epsilon<T>(), worst));
+        units.push_back(judge<T, N>(check, h, jacobians, sizes, epsilon<T>(), exponents, worst));
         // The DEL's map on (q, p) itself: q' by Newton on p_begin[future](q, q') = p from the
         // trajectory's q_{k+1}, p' = p_end[past](q, q').
         const Vector<T, N>& q_next = q[worst + 1];
@@ -133,6 +134,14 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
           "for the composition; a defect falling like a power of h fails as truncation";
       claim.evidence["mismatched_del"] = context.scheme.mismatched;
     }
+    if (!exponents.empty())
+      claim.evidence["balancing"] = {
+          {"rule",
+           "J judged in the coordinates q~_i = 2^e_i q_i, p~_i = 2^-e_i p_i, e_i the nearest integer to "
+           "log2 sqrt(M_ii) at the initial state (M = d2L/dw2): a symplectic change of coordinates, exact "
+           "in binary arithmetic, that keeps the entries of a Jacobian of bodies of very different masses "
+           "(dq/dp = h/m) within the precision"},
+          {"exponents", exponents}};
     check.scaling_failure = truncation_scaling(context.steps(), check.values, units, resolved);
     check.scaling_limit = "a defect above " + std::to_string(resolved) +
                           " rounding units at two h that falls like a power of h";
@@ -196,6 +205,24 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
     size << q.cwiseAbs(), momentum_term_sizes(context.system, q, w);
     return size;
   }
+  // The exponents e_i of the balancing (core/structure/symplectic.hpp, balanced): the nearest
+  // integer to log2 √M_ii, M = ∂²L/∂w² at the initial state, 0 where M_ii is not positive and
+  // finite; empty when every e_i is 0 (unit masses: the Jacobians are judged as they are).
+  template <LagrangianSystem System>
+  static std::vector<int> balancing(const CaseContext<System>& context) {
+    using std::isfinite, std::log2, std::lround;
+    const auto d = lagrangian_derivatives(context.system, context.initial.q, context.initial.w);
+    std::vector<int> exponents(static_cast<std::size_t>(context.n), 0);
+    bool any = false;
+    for (int i = 0; i < context.n; ++i) {
+      const double mass = static_cast<double>(d.d2L_dw2(i, i));
+      if (!(isfinite(mass) && mass > 0)) continue;
+      exponents[static_cast<std::size_t>(i)] = static_cast<int>(lround(log2(mass) / 2));
+      any = any || exponents[static_cast<std::size_t>(i)] != 0;
+    }
+    if (!any) exponents.clear();
+    return exponents;
+  }
   // A Jacobian that is not the derivative of the step it is judged for makes the verdict
   // meaningless either way: the claim is an error, whatever the identity measured.
   static void conclude_jacobian_checks(ClaimResult& claim,
@@ -225,24 +252,27 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
   // computed from: each step against ulps·u_k, u_k = unit·s_k·max(1, |J_k|)² (unit the relative
   // rounding of the Jacobian's entries: ε, or a double program's differences'), the composition
   // against N times the largest of those times max(1, |J_N…J_1|)². Returns the rounding unit of
-  // the step judged (the largest defect/tolerance) and sets `worst_step` to its index.
+  // the step judged (the largest defect/tolerance) and sets `worst_step` to its index. Each J_k
+  // is judged balanced by `exponents` (see balancing).
   template <class T, int N>
   static T judge(PerStepCheck<T>& check, const T& h,
                  const std::vector<Matrix<T, twice(N), twice(N)>>& jacobians, const std::vector<T>& sizes,
-                 const T& unit, std::size_t& worst_step) {
+                 const T& unit, const std::vector<int>& exponents, std::size_t& worst_step) {
     using std::max;
     const int steps = static_cast<int>(jacobians.size());
     const int size = jacobians.empty() ? std::max(0, twice(N)) : static_cast<int>(jacobians.front().rows());
     Matrix<T, twice(N), twice(N)> composition = Matrix<T, twice(N), twice(N)>::Identity(size, size);
     T worst_ratio = -1, worst_defect = 0, worst_tolerance = 0, largest_defect = 0, step_tolerance = 0;
     for (int k = 0; k < steps; ++k) {
-      composition = jacobians[k] * composition;
-      const T entry = nan_max(T(1), max_entry<T, twice(N), twice(N)>(jacobians[k]));
+      const Matrix<T, twice(N), twice(N)> jacobian = balanced<T, twice(N)>(jacobians[k], exponents);
+      composition = jacobian * composition;
+      const T largest = max_entry<T, twice(N), twice(N)>(jacobian);
+      const T entry = nan_max(T(1), largest);
       const T tolerance = ulps * unit * sizes[k] * entry * entry;
-      const T defect = symplecticity_defect<T, twice(N)>(jacobians[k]);
+      const T defect = symplecticity_defect<T, twice(N)>(jacobian);
       const std::string where = "at h = " + format_scalar(h, 6) + ", step " + std::to_string(k) + " of " +
                                 std::to_string(steps) + " (the Jacobian's largest entry " +
-                                format_scalar(max_entry<T, twice(N), twice(N)>(jacobians[k]), 3) + ")";
+                                format_scalar(largest, 3) + (exponents.empty() ? "" : ", balanced") + ")";
       require_finite(defect, where + " |JᵀΩJ − Ω|");
       require_finite(tolerance, where + " its tolerance");
       // An allowance of |Ω| = 1 or more would pass JᵀΩJ = 0: the identity cannot be measured at
