@@ -12,7 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "cases/formula_parser.hpp"
 #include "cases/systems.hpp"
+#include "core/formulas/formula_system.hpp"
 #include "core/qxq/del_evolution.hpp"
 #include "bench/commands/timing.hpp"
 #include "harness/process/process_map.hpp"
@@ -112,6 +114,82 @@ nlohmann::json measure_jacobians(const char* scalar, const std::string& vivv_pat
   return row;
 }
 
+// L = Σ w_i²/2 − Σ q_i²/2 in n explicit names: a system sized at run time, for the echo's rows at
+// the sizes programs have (the echo's map is the identity, so L only sizes the messages).
+FormulaSystemDefinition oscillators(int n) {
+  std::vector<std::string> q, w;
+  std::string kinetic, potential;
+  for (int i = 1; i <= n; ++i) {
+    q.push_back("q" + std::to_string(i)), w.push_back("w" + std::to_string(i));
+    kinetic += (i > 1 ? " + " : "") + w.back() + "^2";
+    potential += (i > 1 ? " + " : "") + q.back() + "^2";
+  }
+  const std::string text = "(" + kinetic + ")/2 - (" + potential + ")/2";
+  return {"oscillators", text, parse_formula(text), q, w, {}, {}, nullptr};
+}
+
+// One request of a "precision": "double" program at n coordinates, through the echo: vivv's
+// formatting of 2n numbers at 17 digits, the pipes, the echo's parse and reply, vivv's parse; and
+// one with the program's own Jacobian (2n × 2n entries of 17 digits back). In microseconds.
+nlohmann::json measure_size(const std::string& vivv_path, int n) {
+  const auto system = make_formula_system<double, any_size>(oscillators(n));
+  State<double, any_size> x{Vector<double, any_size>(n), Vector<double, any_size>(n)};
+  for (int i = 0; i < n; ++i) x.q[i] = 1.1 + 0.01 * i, x.w[i] = 0.25 - 0.001 * i;
+  const double h = 0.01;
+  MapProcess::Options options;
+  options.directory = std::filesystem::current_path().string();
+  options.command = {vivv_path, "map-echo"};
+  const ProcessMap<decltype(system)> map(system, options, nlohmann::json{{"name", "oscillators"}}, 1, 2.0, true);
+  const double step_us = 1e6 * seconds_per_call(
+                                   [&] {
+                                     auto next = map.step(x, h);
+                                     keep(next);
+                                   },
+                                   0.3);
+  // The Jacobian's request by itself (ProcessMap::jacobian checks every eighth against
+  // differences, which is not the protocol's cost): the request, the answer's 4n² strings parsed
+  // and read as numbers.
+  options.command = {vivv_path, "map-echo", "--jacobian"};
+  MapProcess echo(options, {{"protocol", map_protocol},
+                            {"digits", 17},
+                            {"dimension", n},
+                            {"extensions", nlohmann::json::array({"jacobian"})}});
+  nlohmann::json request = {{"h", to_decimal<double>(h)}, {"q", nlohmann::json::array()},
+                            {"p", nlohmann::json::array()}, {"jacobian", true}};
+  for (int i = 0; i < n; ++i)
+    request["q"].push_back(to_decimal<double>(x.q[i])), request["p"].push_back(to_decimal<double>(x.w[i]));
+  // The step's request by itself, the answer's 2n strings read as numbers: the protocol's part of
+  // step_us (the rest is vivv's Legendre transforms, p = ∂L/∂w and w from p').
+  nlohmann::json plain = request;
+  plain.erase("jacobian");
+  options.command = {vivv_path, "map-echo"};  // the echo with --jacobian sends one with every answer
+  MapProcess stepper(options, {{"protocol", map_protocol}, {"digits", 17}, {"dimension", n}});
+  Vector<double, any_size> numbers(2 * n);
+  const double trip_us = 1e6 * seconds_per_call(
+                                   [&] {
+                                     const nlohmann::json answer = stepper.request(plain);
+                                     for (int i = 0; i < n; ++i)
+                                       numbers[i] = from_decimal<double>(answer.at("q")[static_cast<std::size_t>(i)].get<std::string>()),
+                                       numbers[n + i] = from_decimal<double>(answer.at("p")[static_cast<std::size_t>(i)].get<std::string>());
+                                     keep(numbers);
+                                   },
+                                   0.3);
+  Matrix<double, any_size, any_size> jacobian(2 * n, 2 * n);
+  const double jacobian_us = 1e6 * seconds_per_call(
+                                       [&] {
+                                         const nlohmann::json answer = echo.request(request);
+                                         const auto& rows = answer.at("jacobian");
+                                         for (int i = 0; i < 2 * n; ++i)
+                                           for (int j = 0; j < 2 * n; ++j)
+                                             jacobian(i, j) = from_decimal<double>(
+                                                 rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]
+                                                     .get<std::string>());
+                                         keep(jacobian);
+                                       },
+                                       0.3);
+  return {{"dimension", n}, {"step_us", step_us}, {"trip_us", trip_us}, {"own_jacobian_us", jacobian_us}};
+}
+
 }  // namespace
 
 int run_process_benchmark(std::ostream& out, const std::string& vivv_path) {
@@ -172,10 +250,26 @@ int run_process_benchmark(std::ostream& out, const std::string& vivv_path) {
     }
     out << "\n";
   }
-  out << "speedup = differences / own; a real program's own work per request multiplies both\n";
+  out << "speedup = differences / own; a real program's own work per request multiplies both\n\n";
+  // The protocol at the sizes programs have: its cost per request against n.
+  nlohmann::json sizes = nlohmann::json::array();
+  for (int n : {2, 14, 114, 300}) sizes.push_back(measure_size(vivv_path, n));
+  out << "one request to a \"precision\": \"double\" program (the echo) at n coordinates: a step "
+         "(2n numbers each way), and\n"
+         "a Jacobian the program sends (2n numbers out, 2n + 4n^2 back); vivv's side, the pipes and "
+         "the echo's parsing\n";
+  std::snprintf(line, sizeof line, "%5s %12s %18s %20s\n", "n", "step (us)", "of it, trip (us)", "own Jacobian (us)");
+  out << line;
+  for (const auto& row : sizes) {
+    std::snprintf(line, sizeof line, "%5d %12.1f %18.1f %20.1f\n", row["dimension"].get<int>(), row["step_us"].get<double>(),
+                  row["trip_us"].get<double>(), row["own_jacobian_us"].get<double>());
+    out << line;
+  }
+  out << "a program's own step and its parsing in Python: bench/process_program.py\n";
   out << nlohmann::json{{"target_microseconds", target_microseconds},
                         {"rows", rows},
-                        {"jacobians", jacobians}}
+                        {"jacobians", jacobians},
+                        {"sizes", sizes}}
              .dump()
       << "\n";
   return 0;
@@ -215,7 +309,9 @@ int run_map_echo(bool send_jacobian) {
   nlohmann::json identity = nlohmann::json::array();
   for (int i = 0; i < 2 * n; ++i) {
     nlohmann::json row = nlohmann::json::array();
-    for (int j = 0; j < 2 * n; ++j) row.push_back(i == j ? padded("1", digits) : "0");
+    // Off the diagonal "0.000…" with the digits a real entry has, so that a line is as long as
+    // a program's (the protocol's cost at large n is mostly these characters).
+    for (int j = 0; j < 2 * n; ++j) row.push_back(i == j ? padded("1", digits) : "0." + std::string(static_cast<std::size_t>(std::max(1, digits - 1)), '0'));
     identity.push_back(row);
   }
   while (std::getline(std::cin, line)) {

@@ -178,3 +178,24 @@ def test_what_the_users_code_prints_goes_to_standard_error():
     answers = [json.loads(line) for line in done.stdout.splitlines()]
     assert answers[0] == {"protocol": PROTOCOL} and set(answers[1]) == {"q", "p"}
     assert "setting up 1" in done.stderr and "debug [1.0]" in done.stderr
+
+
+def test_numpy_arrays_are_read_whole_and_still_checked_by_their_dtype():
+    # A real array of the right shape is taken by its dtype (no element-by-element checks: a 228 x 228
+    # Jacobian's took 20 times the program's step); anything else still takes the checked way.
+    numpy = pytest.importorskip("numpy")
+    request = dict(REQUEST, jacobian=True)
+    good = talk(returns((numpy.array([1.5]), numpy.array([-0.25]))), [greeting(17, ["jacobian"]), request],
+                arithmetic="numpy", jacobian=lambda h, q, p: numpy.array([[1.0, 0.5], [-0.5, 1.0]]))[1]
+    assert [float(x) for x in good["q"] + good["p"]] == [1.5, -0.25]
+    assert [[float(x) for x in row] for row in good["jacobian"]] == [[1, 0.5], [-0.5, 1]]
+    assert all(significant(x) == 17 for row in good["jacobian"] for x in row)
+    for value, says in [((numpy.array([1.0, 2.0]), numpy.array([0.0])), "2 numbers where 1 belong"),
+                        ((numpy.array([True]), numpy.array([0.0])), "is not a number"),
+                        ((numpy.array(["1.0"]), numpy.array([0.0])), "is not a number"),
+                        ((numpy.array([1.0], dtype=object), numpy.array([None], dtype=object)), "None is not a number")]:
+        answer = talk(returns(value), [greeting(17), REQUEST], arithmetic="numpy")[1]
+        assert says in answer.get("error", ""), (value, answer)
+    wrong_shape = talk(euler, [greeting(17, ["jacobian"]), request], arithmetic="numpy",
+                       jacobian=lambda h, q, p: numpy.eye(3))[1]
+    assert "3 rows" in wrong_shape.get("error", ""), wrong_shape

@@ -82,8 +82,22 @@ def _shown(value):
     return text if len(text) <= 200 else text[:200] + "…"
 
 
+def _real_array(values, shape):
+    """A NumPy array of real numbers (integer or floating dtype) of `shape` as nested lists of Python
+    numbers, or None for anything else (which takes the checked way, element by element). Its dtype
+    vouches for every element: at n = 114 the checks of a Jacobian's 52 000 entries one by one took
+    20 times the program's own step and Jacobian."""
+    dtype = getattr(values, "dtype", None)
+    if dtype is None or getattr(dtype, "kind", None) not in ("f", "i", "u") or getattr(values, "shape", None) != shape:
+        return None
+    return values.tolist()
+
+
 def _real_numbers(values, size, what, function, returned):
     """`values` as a list of `size` real numbers, or BadAnswer naming the function and the value."""
+    fast = _real_array(values, (size,))
+    if fast is not None:
+        return fast
     expected = f"expected {what}"
     if isinstance(values, (str, bytes)) or values is None or not hasattr(values, "__iter__"):
         raise BadAnswer(f"{_where(function)} returned {_shown(returned)}; {expected}")
@@ -95,7 +109,7 @@ def _real_numbers(values, size, what, function, returned):
                         f"{size} belong; {expected}")
     for x in values:
         kind = type(x).__name__
-        if isinstance(x, (bool, str, bytes)) or x is None:
+        if isinstance(x, (bool, str, bytes)) or x is None or kind in ("bool_", "bool"):  # NumPy's bool too
             raise BadAnswer(f"{_where(function)} returned {_shown(returned)}: {_shown(x)} is not a number; {expected}")
         if isinstance(x, _numbers.Complex) and not isinstance(x, _numbers.Real) or "complex" in kind:
             raise BadAnswer(f"{_where(function)} returned {_shown(returned)}: {_shown(x)} is complex; {expected} "
@@ -116,6 +130,9 @@ def _state(result, dimension, function):
 
 def _matrix(result, size, function):
     what = f"a {size} x {size} matrix d(q', p')/d(q, p): {size} rows of {size} real numbers"
+    fast = _real_array(result, (size, size))
+    if fast is not None:
+        return fast
     if isinstance(result, (str, bytes)) or result is None or not hasattr(result, "__iter__"):
         raise BadAnswer(f"{_where(function)} returned {_shown(result)}; expected {what}")
     rows = list(result)
