@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <optional>
 #include <set>
@@ -21,27 +22,53 @@ using namespace html;
 
 namespace {
 
-// "pendulum (k = 1), q = (1.1), w = (0.25), T = 4": the problem a group of cases shares.
+// "(1, 2, 3, … 7 values)": a list of numbers in words, the first three of a long one.
+std::string numbers_in_words(const std::vector<std::string>& values) {
+  std::string list;
+  const std::size_t shown = values.size() > 6 ? 3 : values.size();
+  for (std::size_t i = 0; i < shown; ++i) list += (i ? ", " : "") + values[i];
+  if (shown < values.size()) list += ", … " + std::to_string(values.size()) + " values";
+  return "(" + list + ")";
+}
+
+std::string number_in_words(const json& value) {
+  return value.is_string() ? short_decimal(value.get<std::string>(), 6) : value.dump();
+}
+
+// "pendulum (k = 1), q = (1.1), w = (0.25), T = 4": the problem a group of cases shares. A family
+// of parameters (m[1] … m[7]) reads "m = (1, 2, 3, … 7 values)", and so does a long state.
 std::string problem_in_words(const json& c) {
   std::string text = text_of(c, "system");
   const json parameters = c.value("parameters", json());
   if (parameters.is_object() && !parameters.empty()) {
+    // In the report's (sorted) order of names; a family's members by their index (m[2] before m[10]).
+    std::vector<std::pair<std::string, std::vector<std::pair<long, std::string>>>> named;
+    for (const auto& [name, value] : parameters.items()) {
+      const std::size_t bracket = name.find('[');
+      const std::string family = name.substr(0, bracket);
+      if (named.empty() || named.back().first != family || bracket == std::string::npos) named.push_back({family, {}});
+      const long index = bracket == std::string::npos ? 0 : std::strtol(name.c_str() + bracket + 1, nullptr, 10);
+      named.back().second.push_back({index, number_in_words(value)});
+    }
     std::string list;
-    for (const auto& [name, value] : parameters.items())
-      list += (list.empty() ? "" : ", ") + name + " = " +
-              (value.is_string() ? short_decimal(value.get<std::string>(), 6) : value.dump());
+    for (auto& [name, members] : named) {
+      std::stable_sort(members.begin(), members.end(),
+                       [](const auto& a, const auto& b) { return a.first < b.first; });
+      std::vector<std::string> values;
+      for (const auto& member : members) values.push_back(member.second);
+      list += (list.empty() ? "" : ", ") + name + " = " + (values.size() == 1 ? values[0] : numbers_in_words(values));
+    }
     text += " (" + list + ")";
   }
   const json initial = c.value("initial", json());
   for (const char* key : {"q", "w"})
     if (initial.is_object() && initial.contains(key) && initial[key].is_array()) {
-      std::string list;
-      for (const auto& value : initial[key])
-        list += (list.empty() ? "" : ", ") + (value.is_string() ? short_decimal(value.get<std::string>(), 6) : value.dump());
-      text += std::string(", ") + key + " = (" + list + ")";
+      std::vector<std::string> values;
+      for (const auto& value : initial[key]) values.push_back(number_in_words(value));
+      text += std::string(", ") + key + " = " + numbers_in_words(values);
     }
   const json T = c.value("T", json());
-  text += ", T = " + (T.is_string() ? short_decimal(T.get<std::string>(), 6) : T.dump());
+  text += ", T = " + number_in_words(T);
   return text;
 }
 

@@ -89,6 +89,7 @@ TEST(CaseFile, MalformedFieldsAreNamed) {
 TEST(CaseFile, EveryDefaultSuiteCaseParses) {
   int count = 0;
   for (const auto& entry : std::filesystem::directory_iterator(std::string(VIVV_SOURCE_DIR) + "/cases/suite")) {
+    if (entry.path().extension() != ".json") continue;  // each case's .verdicts beside it
     EXPECT_NO_THROW(read_case_file(entry.path().string())) << entry.path();
     ++count;
   }
