@@ -17,7 +17,7 @@ case "$mode" in run|test|slow|sanitize) ;; *) echo "usage: bash bootstrap.sh run
 
 # Debian packages vivv builds and tests with (DESIGN §2; nothing else, nothing downloaded).
 packages=(g++ cmake make ninja-build libeigen3-dev libboost-dev libmpfr-dev libgmp-dev nlohmann-json3-dev
-          libvalijson-dev libgtest-dev libbenchmark-dev python3-jsonschema)
+          libgtest-dev libbenchmark-dev python3-jsonschema)
 # Only needed to test: the "browser" tests render report.html in headless Chromium, the
 # "scale" tests start shards with GNU parallel, the "python" tests run the integrators of
 # examples/python-integrator (mpmath, NumPy) through the process protocol, the package python/
@@ -26,15 +26,29 @@ if [ "$mode" = test ] || [ "$mode" = slow ]; then
   packages+=(chromium parallel python3-mpmath python3-numpy python3-pytest python3-venv python3-setuptools
              python3-wheel)
 fi
+sudo_cmd=""; [ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
 missing=()
 for package in "${packages[@]}"; do
   dpkg -s "$package" >/dev/null 2>&1 || missing+=("$package")
 done
 if ((${#missing[@]})); then
   echo "installing: ${missing[*]}"
-  sudo_cmd=""; [ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
   $sudo_cmd apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq "${missing[@]}"
+fi
+
+# Valijson, the schema validator, is header-only, but Debian's libvalijson-dev depends on the
+# libraries of all its adapters (Qt 5, Poco, yaml-cpp, jsoncpp, RapidJSON, picojson: 97 packages),
+# of which vivv uses none (it validates nlohmann-json documents). Unless it is installed, its
+# Debian package is fetched with apt-get download and unpacked into .deps/valijson (git-ignored),
+# where CMake looks for it: the same Debian headers, without the 97 packages.
+if ! dpkg -s libvalijson-dev >/dev/null 2>&1 && [ ! -f .deps/valijson/usr/include/valijson/validator.hpp ]; then
+  mkdir -p .deps
+  echo "unpacking Debian's libvalijson-dev (headers only) into .deps/valijson"
+  (cd .deps && { apt-get download -qq libvalijson-dev 2>/dev/null ||
+                 { $sudo_cmd apt-get update -qq && apt-get download -qq libvalijson-dev; }; })
+  dpkg-deb -x .deps/libvalijson-dev_*.deb .deps/valijson
+  rm -f .deps/libvalijson-dev_*.deb
 fi
 
 jobs=$(nproc)
