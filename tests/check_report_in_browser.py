@@ -19,6 +19,7 @@ skip code here) when CHROMIUM is not installed.
 """
 import html
 import json
+import math
 import os
 import re
 import shutil
@@ -137,6 +138,47 @@ def check_baseline_and_zeros(report, dom, problems):
                     problems.append(f"{case['name']}/{claim['id']}: 'max error 0' for errors it did not measure")
 
 
+def check_words_and_ticks(report, dom, problems):
+    """What the page says matches what was judged: a legend says "fails" only of a series that
+    failed (an undecided one reads "inconclusive"); a claim judged on several series and no order
+    (energy-behaviour: the drift and the energy error's size) names each in its findings row, not
+    the first alone; a failing claim says what its failures mean once, not once per state; the
+    time axis of a plot against t ends at a round tick at or past its last sample."""
+    for case in report["cases"]:
+        for claim in case["claims"]:
+            key = f"{case['name']}/{claim['id']}"
+            escaped = re.escape(html.escape(key, quote=True))
+            legend = re.search(r'<ul class="legend" data-legend-for="' + escaped + r'">(.*?)</ul>', dom, re.S)
+            failed = [s for s in claim.get("series", []) if s.get("holds") is False and not s.get("inconclusive")]
+            undecided = [s for s in claim.get("series", []) if s.get("holds") is False and s.get("inconclusive")]
+            if legend and not failed and "— fails" in html.unescape(legend.group(1)):
+                problems.append(f"{key}: the legend says a series fails, but none failed")
+            if legend and undecided and "— inconclusive" not in html.unescape(legend.group(1)):
+                problems.append(f"{key}: the legend does not say which series is inconclusive")
+            row = re.search(r'<tr[^>]*data-claim-row="' + escaped + r'"[^>]*>(.*?)</tr>', dom, re.S)
+            if row and claim.get("observed_order") is None and len(claim.get("series", [])) > 1:
+                text = html.unescape(re.sub(r"<[^>]+>", "", row.group(1)))
+                for series in claim["series"]:
+                    if series["label"] not in text:
+                        problems.append(f"{key}: the findings row does not name its series {series['label']!r}")
+            if claim.get("explanation", "").count(" is not of order ") > 1:
+                problems.append(f"{key}: the explanation repeats what its failures mean "
+                                f"({claim['explanation'].count(' is not of order ')} times)")
+            runs = claim.get("evidence", {}).get("energy_error_against_t") or []
+            plot = re.search(r'data-claim-time-plot="' + escaped + r'"[^>]*>(.*?)</svg>', dom, re.S)
+            if not runs or not plot:
+                continue
+            grid = re.search(r'<g class="tick">(.*?)</g>', plot.group(1), re.S)
+            ticks = [float(t) for t in re.findall(r'text-anchor="middle">([^<]*)</text>', grid.group(1) if grid else "")]
+            last = max((float(t) for run in runs for t in run.get("t", [])), default=0)
+            step = ticks[1] - ticks[0] if len(ticks) > 1 else 0
+            mantissa = step / 10 ** math.floor(math.log10(step)) if step > 0 else 0
+            if (len(ticks) < 3 or ticks[-1] < last * (1 - 1e-9) or
+                    not any(abs(mantissa - m) < 1e-6 for m in (1, 2, 2.5, 5)) or
+                    any(abs(b - a - step) > 1e-6 * step for a, b in zip(ticks, ticks[1:]))):
+                problems.append(f"{key}: the time axis' ticks {ticks} are not round steps to the last sample t = {last}")
+
+
 # Measures, after layout, every verdict badge against the cell or list it sits in.
 BADGE_SCRIPT = """<script>
 (() => {
@@ -152,6 +194,26 @@ BADGE_SCRIPT = """<script>
     outside.push("the measurement failed: " + error);
   }
   document.body.setAttribute("data-badges-outside", JSON.stringify(outside));
+  // A badge's text on more than one line ("INCONCLUS" / "IVE"), and each claim section's border
+  // by its verdict: an inconclusive, xfail or xpass claim must not look like a pass.
+  const wrapped = [], borders = {};
+  try {
+    for (const badge of document.querySelectorAll(".verdict")) {
+      const range = document.createRange();
+      range.selectNodeContents(badge);
+      const tops = new Set([...range.getClientRects()].map(r => Math.round(r.top)));
+      if (tops.size > 1) wrapped.push(badge.textContent);
+    }
+    for (const section of document.querySelectorAll("section.claim")) {
+      const style = getComputedStyle(section);
+      const verdict = [...section.classList].find(c => c !== "claim") || "";
+      (borders[verdict] = borders[verdict] || []).push(style.borderLeftColor + " " + style.borderLeftStyle);
+    }
+  } catch (error) {
+    wrapped.push("the measurement failed: " + error);
+  }
+  document.body.setAttribute("data-badges-wrapped", JSON.stringify(wrapped));
+  document.body.setAttribute("data-claim-borders", JSON.stringify(borders));
 })();
 </script>"""
 
@@ -173,6 +235,15 @@ def check_badges_inside_cells(binary, directory, problems):
                 problems.append(f"at {width} px: the badge measurement did not run")
             elif json.loads(html.unescape(found.group(1))):
                 problems.append(f"at {width} px: verdict badges outside their cells: {html.unescape(found.group(1))[:400]}")
+            wrapped = re.search(r'data-badges-wrapped="([^"]*)"', dom)
+            if wrapped and json.loads(html.unescape(wrapped.group(1))):
+                problems.append(f"at {width} px: verdict badges broken over lines: {html.unescape(wrapped.group(1))[:200]}")
+            borders = re.search(r'data-claim-borders="([^"]*)"', dom)
+            borders = json.loads(html.unescape(borders.group(1))) if borders else {}
+            passing = set(borders.get("pass", []))
+            for verdict, styles in borders.items():
+                if verdict != "pass" and passing & set(styles):
+                    problems.append(f"at {width} px: a claim section '{verdict}' has the pass border ({styles[0]})")
 
 
 def badge_self_test(binary):
@@ -183,11 +254,18 @@ def badge_self_test(binary):
         with open(os.path.join(work, "report.html"), "w") as f:
             f.write('<!DOCTYPE html><html><body><table style="table-layout: fixed; width: 120px"><tr>'
                     '<td style="width: 40px"><span class="verdict" style="white-space: nowrap">inconclusive'
-                    '</span></td><td>why</td></tr></table></body></html>')
+                    '</span></td><td>why</td></tr></table>'
+                    '<div style="width: 60px"><span class="verdict" style="display: inline-block; '
+                    'overflow-wrap: anywhere">inconclusive</span></div>'
+                    '<section class="claim pass" style="border-left: 5px solid green">a</section>'
+                    '<section class="claim inconclusive" style="border-left: 5px solid green">b</section>'
+                    '</body></html>')
         problems = []
         check_badges_inside_cells(binary, work, problems)
-    print("badge self-test:", "the overflowing badge was found" if problems else "NOT found")
-    return 0 if problems else 1
+    found = {what: any(what in p for p in problems) for what in ("outside their cells", "broken over lines",
+                                                                 "has the pass border")}
+    print("badge self-test:", ", ".join(f"{what}: {'found' if seen else 'NOT found'}" for what, seen in found.items()))
+    return 0 if all(found.values()) else 1
 
 
 def main(argv):
@@ -294,6 +372,7 @@ def main(argv):
                 problems.append(f"{key}: an identity plotted with a fitted order")
     check_work_precision(report, dom, problems)
     check_baseline_and_zeros(report, dom, problems)
+    check_words_and_ticks(report, dom, problems)
     check_badges_inside_cells(binary, directory, problems)
     # report.csv beside it: one row per point of every series, with the run's cost where counted.
     import csv

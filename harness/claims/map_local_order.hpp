@@ -59,6 +59,7 @@ struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
     std::vector<T> steps = context.steps();
     for (int k = 0; k < halvings; ++k) steps.push_back(steps.back() / 2);
     nlohmann::json starts = nlohmann::json::array();
+    std::vector<std::string> defect_times;  // the states whose step failed its order
     for (int j = 0; j < states; ++j) {
       const T t = context.final_time * T(j) / T(states);
       const State<T, N> x = j == 0 ? context.initial : context.reference.advance(context.initial, t);
@@ -101,16 +102,7 @@ struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
       Series series = make_series("|Φ_h(x) − φ_h(x)| from x(" + format_scalar(t, 4) + ")", used_h, error, floor,
                                   std::optional<double>(prediction.order), prediction.exact,
                                   context.order_tolerance, context.fit_options);
-      if (series.holds && !*series.holds && !series.inconclusive)
-        series.explanation += "; one step of " + map_words + " from the state at t = " + format_scalar(t, 4) +
-                              " is not of order " + std::to_string(prediction.order) +
-                              ": an order defect, a lower-order term in " + map_words +
-                              // precision-leak, which would name a narrower format, is refused for a
-                              // program that computes in double: the text names only what the case accepts.
-                              (context.spec.discretization.process_precision == "double"
-                                   ? std::string()
-                                   : std::string(" (where its size is a narrower format's rounding, precision-leak "
-                                                 "names the format)"));
+      if (series.holds && !*series.holds && !series.inconclusive) defect_times.push_back(format_scalar(t, 4));
       claim.series.push_back(std::move(series));
       nlohmann::json q_text = nlohmann::json::array(), p_text = nlohmann::json::array();
       for (int i = 0; i < static_cast<int>(x.q.size()); ++i) q_text.push_back(to_decimal<T>(x.q[i], 8)), p_text.push_back(to_decimal<T>(p[i], 8));
@@ -124,6 +116,21 @@ struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
                              "where fewer than 3 errors clear the floor; each from " + std::to_string(states) +
                              " states x(j·T/" + std::to_string(states) + ") of the reference orbit";
     conclude(claim);
+    // What the failures mean, said once after them all (not once per state: a screen of repeats).
+    if (claim.verdict == "fail" && !defect_times.empty()) {
+      std::string times;
+      for (const std::string& time : defect_times) times += (times.empty() ? "" : ", ") + time;
+      claim.explanation += "; one step of " + map_words + (defect_times.size() == 1 ? " from the state at t = "
+                                                                                    : " from the states at t = ") +
+                           times + " is not of order " + std::to_string(prediction.order) +
+                           ": an order defect, a lower-order term in " + map_words +
+                           // precision-leak, which would name a narrower format, is refused for a
+                           // program that computes in double: the text names only what the case accepts.
+                           (context.spec.discretization.process_precision == "double"
+                                ? std::string()
+                                : std::string(" (where its size is a narrower format's rounding, precision-leak "
+                                              "names the format)"));
+    }
   }
 
  private:

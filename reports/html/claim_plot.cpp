@@ -244,7 +244,7 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
     if (s.predicted)
       fit += (s.exact ? ", predicted " : ", predicted ≥ ") + format_number(*s.predicted, 3);
     any_predicted = any_predicted || s.predicted.has_value();
-    if (s.holds) fit += *s.holds ? " — holds" : " — fails";
+    if (s.holds) fit += *s.holds ? " — holds" : s.inconclusive ? " — inconclusive" : " — fails";
     legend << "<li><span class=\"swatch\" style=\"background:" << s.color << "\"></span>"
            << escape(s.label) << " <span class=\"small\">" << escape(fit) << "</span></li>";
   }

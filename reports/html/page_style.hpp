@@ -29,7 +29,7 @@ pre { background: var(--panel); padding: 8px 10px; overflow-x: auto; border-radi
 .v-inconclusive { color: #5b2a86; background: #efe4fa; border-color: #c3a3e3; }
 .note-cell { font-size: 12px; color: var(--muted); }
 .summary .verdict { font-size: 15px; padding: 4px 14px; }
-table.findings .verdict { white-space: normal; max-width: 100%; box-sizing: border-box; overflow-wrap: anywhere; }
+table.findings .verdict { white-space: nowrap; font-size: 11.5px; padding: 1px 6px; letter-spacing: 0; }
 .attention li { margin: 5px 0; }
 ul.legend { list-style: none; padding: 0; margin: 2px 0 8px 72px; max-width: 560px; font-size: 13px; }
 ul.legend li { margin: 2px 0; overflow-wrap: anywhere; }
@@ -53,6 +53,8 @@ table.findings td.num { font-variant-numeric: tabular-nums; }
 .claim { border: 1px solid var(--rule); border-left: 5px solid var(--pass); border-radius: 6px;
          padding: 12px 14px; margin: 14px 0; background: #fff; }
 .claim.fail { border-left-color: var(--fail); } .claim.error { border-left-color: var(--error); }
+.claim.inconclusive { border-left-color: #8a5cc2; border-left-style: dashed; }
+.claim.xfail { border-left-color: #8a93a3; } .claim.xpass { border-left-color: var(--fail); border-left-style: dashed; }
 .claim-body { display: grid; grid-template-columns: 660px 1fr; gap: 16px; align-items: start; }
 @media (max-width: 1100px) { .claim-body { grid-template-columns: 1fr; } }
 svg.plot { background: #fff; border: 1px solid var(--rule); border-radius: 4px; max-width: 100%; height: auto; }

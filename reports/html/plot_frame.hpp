@@ -48,6 +48,7 @@ struct PlotSeries {
   std::optional<double> order, log10_constant, predicted;
   bool exact = false;
   std::optional<bool> holds;
+  bool inconclusive = false;  // holds is false because the evidence cannot decide
   std::string fit_failure;
   // A value judged against its own tolerance at each h (an identity, a conserved quantity): no
   // order is fitted or drawn for it.
@@ -101,6 +102,7 @@ inline PlotSeries plot_series(const json& series, const std::string& color) {
     out.predicted = series["predicted_order"].get<double>();
   out.exact = series.value("exact_order", false);
   if (series.value("holds", json()).is_boolean()) out.holds = series["holds"].get<bool>();
+  out.inconclusive = series.value("inconclusive", false);
   out.fit_failure = text_of(series, "fit_failure");
   return out;
 }

@@ -19,6 +19,27 @@ namespace vivv {
 using namespace html;
 
 
+namespace {
+
+// Ticks 0, s, 2s, … on [0, high] with s one of 1, 2, 2.5, 5 times a power of ten and four to
+// eight intervals, the last tick at or past high: T = 10 sampled to 9.99 reads 0, 2, 4, …, 10,
+// not 0, 2.5, 4.99, 7.49, 9.99. Returns the ticks and the axis' end (the last tick).
+std::pair<Ticks, double> time_ticks(double high) {
+  const double magnitude = std::pow(10.0, std::floor(std::log10(high / 4)));
+  double step = 10 * magnitude;
+  for (const double factor : {1.0, 2.0, 2.5, 5.0, 10.0})
+    if (high / (factor * magnitude) <= 8.0 + 1e-9) {
+      step = factor * magnitude;
+      break;
+    }
+  const int intervals = static_cast<int>(std::ceil(high / step - 1e-9));
+  Ticks ticks;
+  for (int i = 0; i <= intervals; ++i) ticks.push_back({i * step, format_number(i * step, 4)});
+  return {ticks, intervals * step};
+}
+
+}  // namespace
+
 std::string render_time_plot(const json& claim, const std::string& key) {
   const json evidence = claim.value("evidence", json::object());
   const json runs = evidence.is_object() ? evidence.value("energy_error_against_t", json::array())
@@ -66,15 +87,14 @@ std::string render_time_plot(const json& claim, const std::string& key) {
   const double width = 640, left = 72, right = width - 24, top = 14, plot_bottom = 214;
   const double height = plot_bottom + 50;
   // t on a linear axis from 0, the error on a log axis.
-  const PlotAxes axes{left, right, top, plot_bottom, plot_bottom, 0, *t_high, *y_low, *y_high};
+  const auto [t_ticks, t_end] = time_ticks(*t_high);
+  const PlotAxes axes{left, right, top, plot_bottom, plot_bottom, 0, t_end, *y_low, *y_high};
   std::ostringstream svg;
   svg << "<svg class=\"plot time\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width
       << "\" height=\"" << fixed(height) << "\" viewBox=\"0 0 " << width << " " << fixed(height)
       << "\" data-claim-time-plot=\"" << escape(key)
       << "\" role=\"img\" aria-label=\"energy error against t for " << escape(key) << "\">\n";
   svg << "<title>" << escape(key) << ": " << quantity << " against t, one line per h</title>\n";
-  Ticks t_ticks;  // 0 … T in quarters
-  for (int i = 0; i <= 4; ++i) t_ticks.push_back({*t_high * i / 4, format_number(*t_high * i / 4, 3)});
   write_background(svg, axes);
   write_grid(svg, axes, t_ticks, log_ticks(*y_low, *y_high), "\n");
   write_axis_titles(svg, axes, "t", quantity);
