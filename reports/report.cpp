@@ -71,13 +71,18 @@ nlohmann::json series_json(const Series& series) {
 }  // namespace
 
 // Each run's L evaluations, by N (deterministic: in the case); its wall time goes to the run block.
-// A program's map evaluates L, if at all, where vivv does not count: unknown (null), not 0.
+// A program's map evaluates L, if at all, where vivv does not count: unknown (null), not 0; its
+// own count beside it where it reports one.
 nlohmann::json run_cost(const CaseResult& result) {
   nlohmann::json out = nlohmann::json::array();
   const bool counted = result.spec.discretization.kind != "process";
-  for (const auto& [N, cost] : result.run_costs)
-    out.push_back({{"N", N},
-                   {"L_evaluations", counted ? nlohmann::json(cost.lagrangian_evaluations) : nlohmann::json()}});
+  for (const auto& [N, cost] : result.run_costs) {
+    nlohmann::json row = {{"N", N},
+                          {"L_evaluations", counted ? nlohmann::json(cost.lagrangian_evaluations) : nlohmann::json()}};
+    // What the program says its steps evaluated (protocol extension "evaluations").
+    if (cost.program_evaluations) row["program_evaluations"] = *cost.program_evaluations;
+    out.push_back(row);
+  }
   return out;
 }
 nlohmann::json run_seconds(const CaseResult& result) {

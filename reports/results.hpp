@@ -123,6 +123,8 @@ struct SweepRecord {
 struct RunCost {
   long lagrangian_evaluations = 0;
   double seconds = 0;
+  // A program's map: the evaluations its answers say it made (extension "evaluations"), if it said.
+  std::optional<long> program_evaluations;
 };
 
 struct CaseResult {

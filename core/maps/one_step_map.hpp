@@ -66,6 +66,10 @@ struct OneStepMap {
     (void)x, (void)h;
     return std::nullopt;
   }
+  // The evaluations the map says its steps have made so far (a program that took up the protocol's
+  // extension "evaluations": forces, or L, counted in the program): the work-precision diagram's
+  // cost of a map whose work vivv does not see; nullopt where the map does not report them.
+  virtual std::optional<long> reported_evaluations() const { return std::nullopt; }
   // How jacobian() computes it, for the report.
   virtual std::string jacobian_method() const {
     return "forward-mode automatic differentiation of one step of " + name() +

@@ -6,7 +6,7 @@ kick = 1/2 is Stormer-Verlet: order 2 and symplectic. `--kick 0.6` is the bug th
 negative case plants: still a composition of symplectic kicks and drifts, but order 1.
 
     python3 stormer_verlet.py [--kick K] [--arithmetic mpmath|numpy] [--scale-momentum S] [--shift C]
-                              [--jacobian [--wrong-jacobian-after K]]
+                              [--jacobian [--wrong-jacobian-after K]] [--count-evaluations]
 
 --arithmetic numpy computes in double with NumPy arrays (its cases declare "precision":
 "double"). --scale-momentum S multiplies p' by 1 + S on every step: a map that is not
@@ -15,6 +15,8 @@ limit in double. --shift C adds C·h^3 to q' on every step: still symplectic and
 a larger error constant (the regression a baseline guard must catch). --jacobian sends the map's
 own Jacobian, derived by hand (vivv's symplecticity then needs no differences of the program);
 --wrong-jacobian-after K plants a bug in it from the K-th on (dp'/dq off by 1 %).
+--count-evaluations tells vivv how many times each step evaluated F (extension "evaluations": 2
+a step), so that the report's work-precision diagram draws this program by its work.
 """
 import argparse
 import os
@@ -65,6 +67,8 @@ def options(argv):
                         help="send the map's own Jacobian (extension jacobian), derived by hand")
     parser.add_argument("--wrong-jacobian-after", type=int, default=None, metavar="K",
                         help="from the K-th Jacobian on, send dp'/dq 1 %% too large (a planted bug)")
+    parser.add_argument("--count-evaluations", action="store_true",
+                        help="report each step's evaluations of F (extension evaluations)")
     return parser.parse_args(argv)
 
 
@@ -100,4 +104,5 @@ if __name__ == "__main__":
         return J
 
     constants["wrong"] = 1.01
-    vivv_map.serve(step, jacobian=jacobian if args.jacobian else None, arithmetic=args.arithmetic, setup=setup)
+    vivv_map.serve(step, jacobian=jacobian if args.jacobian else None, arithmetic=args.arithmetic, setup=setup,
+                   evaluations=(lambda: force.evaluations) if args.count_evaluations else None)

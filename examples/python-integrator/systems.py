@@ -27,6 +27,7 @@ class Force:
 
     def __init__(self):
         self.force = None
+        self.evaluations = 0  # calls of F so far (reported with --count-evaluations)
 
     def setup(self, system, dimension, number):
         name = system.get("name")
@@ -57,4 +58,5 @@ class Force:
         self.stiffness = stiffnesses[(name, dimension)]
 
     def __call__(self, q):
+        self.evaluations += 1
         return self.force(q)

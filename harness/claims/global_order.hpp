@@ -46,14 +46,19 @@ shared_map_trajectory(const CaseContext<System>& context, const typename System:
   auto& kept = context.map_runs[N];
   if (!kept) {
     const CostMeter meter;
+    const std::optional<long> reported_before = context.map->reported_evaluations();
     kept = std::make_shared<const std::vector<State<typename System::Scalar, System::dimension>>>(
         map_trajectory(context, h, N));
     context.run_costs[N] = meter.cost();
     // A map in another program evaluates its own L (or forces), which vivv does not see: what
     // vivv counted are its own conversions between w and p, not the method's cost. Recorded as 0
-    // (no work-precision point by evaluations; its wall time is the program's too).
-    if (context.spec.discretization.kind == "process")
+    // (the report writes null: unknown); the program's own count where its answers give one.
+    if (context.spec.discretization.kind == "process") {
       context.run_costs[N].lagrangian_evaluations = 0;
+      if (const std::optional<long> reported_after = context.map->reported_evaluations();
+          reported_before && reported_after)
+        context.run_costs[N].program_evaluations = *reported_after - *reported_before;
+    }
   }
   return kept;
 }

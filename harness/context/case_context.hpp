@@ -224,7 +224,7 @@ class CostMeter {
  public:
   RunCost cost() const {
     return {lagrangian_evaluations - evaluations_,
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count()};
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count(), std::nullopt};
   }
 
  private:

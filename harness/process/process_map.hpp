@@ -145,7 +145,13 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     }
     next.w = velocity_for_momentum(system_, next.q, p_next, x.w);
     last_ = {next, p_next};
+    if (process_->uses_extension(evaluations_extension)) evaluations_ += evaluations_in(answer);
     return next;
+  }
+
+  std::optional<long> reported_evaluations() const override {
+    if (!process_->uses_extension(evaluations_extension)) return std::nullopt;
+    return evaluations_;
   }
 
   Matrix<T, twice(N), twice(N)> jacobian(const State<T, N>& x, const T& h) const override {
@@ -191,6 +197,9 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
 
   // The extension a program takes up to send its own Jacobian with each answer.
   static constexpr const char* jacobian_extension = "jacobian";
+  // The extension a program takes up to say, in each step's answer, how many evaluations (of its
+  // forces, or of L) the step made: "evaluations": a whole number, 0 or more.
+  static constexpr const char* evaluations_extension = "evaluations";
 
  private:
   using R = mpfr_real;
@@ -460,8 +469,19 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
                                      {"digits", digits},
                                      {"dimension", n},
                                      {"system", system_json_},
-                                     {"extensions", nlohmann::json::array({jacobian_extension})}};
+                                     {"extensions", nlohmann::json::array({jacobian_extension, evaluations_extension})}};
     return std::make_unique<MapProcess>(options_, greeting);
+  }
+
+  // A step's "evaluations" (extension "evaluations"): a JSON whole number from 0 to 10^12 (a count
+  // is not a measurement: a number, not a decimal string); anything else ends the case, naming it.
+  long evaluations_in(const nlohmann::json& answer) const {
+    const auto found = answer.find(evaluations_extension);
+    if (found == answer.end() || !found->is_number_unsigned() || found->get<unsigned long long>() > 1000000000000ULL)
+      process_->fail_answer("it took up the extension \"evaluations\" and its answer's \"evaluations\" is " +
+                            (found == answer.end() ? std::string("missing") : quoted_text(found->dump(), 80)) +
+                            ", not the count of evaluations this step made (a whole number, 0 to 10^12)");
+    return static_cast<long>(found->get<unsigned long long>());
   }
 
   // answer[key][i], a decimal string with at least `digits` significant digits (or zero), in S.
@@ -521,6 +541,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   mutable T noise_ = 0;
   mutable T last_unit_ = 0;        // the last Jacobian's relative rounding (last_jacobian_unit)
   mutable std::optional<std::pair<State<T, N>, Vector<T, N>>> last_;  // the last answer: (q, w), p
+  mutable long evaluations_ = 0;  // the "evaluations" of every step's answer so far (extension)
   static constexpr long recheck = 8;
 };
 

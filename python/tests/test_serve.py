@@ -80,6 +80,32 @@ def test_the_jacobian_is_sent_only_when_offered():
     assert unasked[0] == {"protocol": PROTOCOL}
 
 
+def test_each_answer_counts_its_evaluations_when_offered():
+    made = [0]
+    def counting(h, q, p):
+        made[0] += 3  # three force evaluations a step
+        return euler(h, q, p)
+    request = {"h": "0.5", "q": ["1"], "p": ["0"]}
+    answers = talk(counting, [greeting(17, ["jacobian", "evaluations"]), request, request],
+                   arithmetic="float", evaluations=lambda: made[0])
+    assert answers[0] == {"protocol": PROTOCOL, "extensions": ["evaluations"]}
+    assert [answer["evaluations"] for answer in answers[1:]] == [3, 3]
+    plain = talk(counting, [greeting(17), request], arithmetic="float", evaluations=lambda: made[0])
+    assert plain[0] == {"protocol": PROTOCOL} and "evaluations" not in plain[1]  # not offered: not sent
+
+
+def test_a_count_that_is_not_a_whole_number_or_falls_is_an_error_answer():
+    request = {"h": "0.5", "q": ["1"], "p": ["0"]}
+    for count, words in [(lambda: 1.5, "returned 1.5"), (lambda: True, "returned True"),
+                         (lambda: "2", "returned '2'"), (lambda: -1, "returned -1")]:
+        answers = talk(euler, [greeting(17, ["evaluations"]), request], arithmetic="float", evaluations=count)
+        assert words in answers[1]["error"], answers[1]
+    falling = iter([5, 4])
+    answers = talk(euler, [greeting(17, ["evaluations"]), request], arithmetic="float",
+                   evaluations=lambda: next(falling))
+    assert "fell from 5 to 4" in answers[1]["error"], answers[1]
+
+
 def test_an_exception_in_step_is_an_error_answer():
     def broken(h, q, p):
         raise ZeroDivisionError("h too small")

@@ -1,11 +1,12 @@
 """The loop of protocol vivv-map/1 (docs/process-protocol.md in vivv's source tree).
 
     vivv:    {"protocol": "vivv-map/1", "digits": D, "dimension": n, "system": {...},
-              "extensions": ["jacobian"]}
-    program: {"protocol": "vivv-map/1"}   or, sending its own Jacobian,
-             {"protocol": "vivv-map/1", "extensions": ["jacobian"]}   (or {"error": "why not"})
+              "extensions": ["jacobian", "evaluations"]}
+    program: {"protocol": "vivv-map/1"}   or, sending its own Jacobian or its count of evaluations,
+             {"protocol": "vivv-map/1", "extensions": ["jacobian", "evaluations"]}   (or {"error": "why not"})
     vivv:    {"h": "...", "q": ["...", ...], "p": ["...", ...]}   (+ "jacobian": true where it reads one)
-    program: {"q": [...], "p": [...]}   (+ "jacobian": [[...], ...] when agreed and asked for)
+    program: {"q": [...], "p": [...]}   (+ "jacobian": [[...], ...] when agreed and asked for,
+                                          + "evaluations": k, the step's count, when agreed)
 
 until vivv closes the program's input. Numbers are decimal strings with at least D significant
 digits.
@@ -23,6 +24,7 @@ from .arithmetic import arithmetic_named
 
 PROTOCOL = "vivv-map/1"
 JACOBIAN = "jacobian"
+EVALUATIONS = "evaluations"
 
 
 class Decline(Exception):
@@ -154,7 +156,7 @@ def _written(values, numbers, function, returned):
     return text
 
 
-def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, input=None, output=None):
+def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, evaluations=None, input=None, output=None):
     """Answer vivv's requests with step(h, q, p) -> (q', p') until vivv closes the input.
 
     arithmetic: "mpmath" (mp.dps = D), "decimal" (the context's precision = D), "float" or
@@ -164,8 +166,11 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, input=None, o
     each answer to a request marked "jacobian": true when vivv offers the extension. setup(system, dimension, number), if given, is
     called once with the greeting's system (a dict: "name", "params", or a formula's fields), the
     dimension n and number(text) converting a decimal string to the arithmetic's numbers; it
-    raises Decline(reason) for a system the program cannot step. An exception in step() or
-    jacobian() is sent to vivv as an error answer with its traceback's last line.
+    raises Decline(reason) for a system the program cannot step. evaluations(), if given, returns
+    how many evaluations (of the forces, or of L) the program has made so far, a whole number: each
+    answer then says how many its step made (extension "evaluations"), and the report's
+    work-precision diagram draws the program by that count instead of leaving it out. An exception
+    in step() or jacobian() is sent to vivv as an error answer with its traceback's last line.
     """
     input = sys.stdin if input is None else input
     output = _protocol_channel() if output is None else output
@@ -185,17 +190,27 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, input=None, o
     if reason is not None:
         _reply(output, {"error": reason})
         return 1
-    send_jacobian = jacobian is not None and JACOBIAN in greeting.get("extensions", [])
-    _reply(output, {"protocol": PROTOCOL, **({"extensions": [JACOBIAN]} if send_jacobian else {})})
+    offered = greeting.get("extensions", [])
+    send_jacobian = jacobian is not None and JACOBIAN in offered
+    send_evaluations = evaluations is not None and EVALUATIONS in offered
+    taken = [name for name, taken in ((JACOBIAN, send_jacobian), (EVALUATIONS, send_evaluations)) if taken]
+    _reply(output, {"protocol": PROTOCOL, **({"extensions": taken} if taken else {})})
     for line in input:
         request = json.loads(line)
         h = numbers.number(request["h"])
         q = numbers.vector(numbers.number(x) for x in request["q"])
         p = numbers.vector(numbers.number(x) for x in request["p"])
         try:
+            before = _count(evaluations) if send_evaluations else 0
             result = step(h, q, p)
             q_next, p_next = _state(result, dimension, step)
             answer = {"q": _written(q_next, numbers, step, result), "p": _written(p_next, numbers, step, result)}
+            if send_evaluations:
+                made = _count(evaluations) - before
+                if made < 0:
+                    raise BadAnswer(f"evaluations() fell from {before} to {before + made} across one step(): "
+                                    "it must count up (the evaluations made so far)")
+                answer[EVALUATIONS] = made
             if send_jacobian and request.get(JACOBIAN) is True:  # vivv asks where it reads one
                 matrix = jacobian(h, q, p)
                 answer[JACOBIAN] = [_written(row, numbers, jacobian, matrix)
@@ -208,6 +223,15 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, input=None, o
             return 1
         _reply(output, answer)
     return 0
+
+
+def _count(evaluations):
+    """evaluations()'s value, a whole number (a bool or a float is refused, as vivv would)."""
+    value = evaluations()
+    if isinstance(value, bool) or not isinstance(value, _numbers.Integral) or value < 0:
+        raise BadAnswer(f"evaluations() returned {value!r}: it must return the evaluations made so far, "
+                        "a whole number, 0 or more")
+    return int(value)
 
 
 def _described(error):

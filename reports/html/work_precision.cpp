@@ -90,6 +90,9 @@ std::string render_work_precision(const json& cases, const json& run, bool wall_
   std::map<std::string, std::string> captions;
   std::map<std::string, int> members;
   std::map<std::string, std::vector<std::string>> uncounted;
+  // Per group: the programs whose own count of evaluations (protocol extension "evaluations")
+  // is their cost, by name.
+  std::map<std::string, std::vector<std::string>> self_counted;
   for (const auto& c : cases) {
     if (!c.is_object()) continue;
     const json file = c.value("case_file", json::object());
@@ -105,11 +108,20 @@ std::string render_work_precision(const json& cases, const json& run, bool wall_
     captions[group] = problem_in_words(c);
     // The cost of each N's run, log10: its evaluations of L, or its wall time.
     std::map<int, double> evaluations;
+    bool program_counted = false;
     if (!wall_time) {
-      for (const auto& row : c.value("cost", json::array()))
-        if (row.is_object() && row.contains("L_evaluations") && row["L_evaluations"].is_number() &&
+      for (const auto& row : c.value("cost", json::array())) {
+        if (!row.is_object()) continue;
+        if (row.contains("L_evaluations") && row["L_evaluations"].is_number() &&
             row["L_evaluations"].get<double>() > 0)
           evaluations[row.value("N", 0)] = std::log10(row["L_evaluations"].get<double>());
+        else if (row.contains("program_evaluations") && row["program_evaluations"].is_number() &&
+                 row["program_evaluations"].get<double>() > 0) {
+          evaluations[row.value("N", 0)] = std::log10(row["program_evaluations"].get<double>());
+          program_counted = true;
+        }
+      }
+      if (program_counted) self_counted[group].push_back(text_of(c, "name"));
     } else if (run_seconds.is_object()) {
       for (const auto& row : run_seconds.value(text_of(c, "name"), json::array()))
         if (row.is_object() && row.value("seconds", 0.0) > 0)
@@ -145,7 +157,9 @@ std::string render_work_precision(const json& cases, const json& run, bool wall_
             evaluations[steps[i]], *e,
             "N = " + std::to_string(steps[i]) + ": error " + short_decimal(error[i].get<std::string>(), 4) +
                 ", " + (wall_time ? format_number(cost, 3) + " s of wall time"
-                                  : std::to_string(std::llround(cost)) + " evaluations of L"));
+                                  : std::to_string(std::llround(cost)) +
+                                        (program_counted ? " evaluations, as the program counts them"
+                                                         : " evaluations of L")));
       }
       if (line.points.size() >= 2) groups[group].push_back(line);
     }
@@ -186,9 +200,11 @@ std::string render_work_precision(const json& cases, const json& run, bool wall_
              "or the "
              "reference's own error</title></rect>\n";
     write_grid(out, axes, log_ticks(*x_low, *x_high), log_ticks(*y_low, *y_high), "");
+    const bool any_self_counted = !self_counted[group].empty();
     write_axis_titles(out, axes,
-                      wall_time ? "wall time of the run, s (this machine)"
-                                : "evaluations of L (the run's cost, counted)",
+                      wall_time          ? "wall time of the run, s (this machine)"
+                      : any_self_counted ? "evaluations (of L by vivv; a program's as it reports them)"
+                                         : "evaluations of L (the run's cost, counted)",
                       "|q_N − q(T)|");
     std::ostringstream legend;
     legend << "<ul class=\"legend\">";
@@ -210,16 +226,22 @@ std::string render_work_precision(const json& cases, const json& run, bool wall_
              << "</span></li>";
     }
     legend << "</ul>";
-    std::string missing;
+    std::string missing, reported;
     for (const auto& name : uncounted[group]) missing += (missing.empty() ? "" : ", ") + name;
+    for (const auto& name : self_counted[group]) reported += (reported.empty() ? "" : ", ") + name;
     out << "</svg>" << legend.str() << "<figcaption>" << escape(captions[group])
         << ": the global error against "
         << (wall_time ? "the wall time of each run on the machine that ran it"
                       : "the evaluations of L each run made (the same on any machine)")
         << " (log-log; shaded: below the floor). Lower and further left is better."
+        << (reported.empty() ? std::string()
+                             : " The cost of " + escape(reported) +
+                                   " is the evaluations its program reports (protocol extension "
+                                   "\"evaluations\": its forces, or L, counted by the program).")
         << (missing.empty() ? std::string()
                             : " Not drawn, its cost unknown (a program's map: vivv does not count "
-                              "its evaluations of L): " + escape(missing) + ".")
+                              "its evaluations of L, and the program does not report them through "
+                              "the protocol's extension \"evaluations\"): " + escape(missing) + ".")
         << "</figcaption></figure>\n";
   }
   return out.str();

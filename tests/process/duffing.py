@@ -4,11 +4,14 @@ test's own), in Python's decimal at the digits vivv asks for: a map program for 
 protocol's checks in every scalar (tests/CMakeLists.txt, process/duffing-*).
 
 usage: duffing.py [--perturb EPS] [--padded] [--jacobian [--wrong-jacobian-after K] [--huge-jacobian-at K]]
+                  [--evaluations JSON]
 
 --perturb EPS scales each step's new momentum by 1 + EPS·h²: a map that is not symplectic by
 EPS·h² per step (symplecticity must fail; in double too). --padded computes in double and writes the digits of
 its doubles as if they were the precision asked for (symplecticity must err: its Jacobian cannot
-be measured).
+be measured). --evaluations JSON takes up the extension "evaluations" and sends JSON (2 for its two
+force evaluations a step; "2", -1, 1.5 or true are the malformed counts vivv must refuse) with
+every answer.
 """
 import decimal
 import json
@@ -22,6 +25,7 @@ own_jacobian = "--jacobian" in sys.argv
 wrong_after = int(sys.argv[sys.argv.index("--wrong-jacobian-after") + 1]) if "--wrong-jacobian-after" in sys.argv else None
 # --huge-jacobian-at K: the K-th Jacobian (one vivv does not compare with differences) has every
 # entry 1e160, so that J^T Omega J overflows a double to NaN (a planted bug: no NaN may pass).
+evaluations = json.loads(sys.argv[sys.argv.index("--evaluations") + 1]) if "--evaluations" in sys.argv else None
 huge_at = int(sys.argv[sys.argv.index("--huge-jacobian-at") + 1]) if "--huge-jacobian-at" in sys.argv else None
 jacobians = 0
 
@@ -35,7 +39,9 @@ greeting = json.loads(sys.stdin.readline())
 digits = greeting["digits"]
 decimal.getcontext().prec = digits + 5
 own_jacobian = own_jacobian and "jacobian" in greeting.get("extensions", [])
-send({"protocol": "vivv-map/1", **({"extensions": ["jacobian"]} if own_jacobian else {})})
+count_evaluations = evaluations is not None and "evaluations" in greeting.get("extensions", [])
+taken = [name for name, taken in (("jacobian", own_jacobian), ("evaluations", count_evaluations)) if taken]
+send({"protocol": "vivv-map/1", **({"extensions": taken} if taken else {})})
 for line in sys.stdin:
     request = json.loads(line)
     if padded:
@@ -51,6 +57,8 @@ for line in sys.stdin:
     scale = 1 + (float(perturb) if padded else perturb) * h * h
     p = p * scale
     answer = {"q": [f"{x:.{digits - 1}e}"], "p": [f"{p:.{digits - 1}e}"]}
+    if count_evaluations:
+        answer["evaluations"] = evaluations
     if own_jacobian and request.get("jacobian") is True:
         dhalf_dx = h / 2 * stiffness(x0)
         dx_dx, dx_dp = 1 + h * dhalf_dx, h
