@@ -206,17 +206,20 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
     return size;
   }
   // The exponents e_i of the balancing (core/structure/symplectic.hpp, balanced): the nearest
-  // integer to log2 √M_ii, M = ∂²L/∂w² at the initial state, 0 where M_ii is not positive and
-  // finite; empty when every e_i is 0 (unit masses: the Jacobians are judged as they are).
+  // integer to log2 √M_ii, M = ∂²L/∂w² at the initial state, 0 where M_ii is not a positive
+  // normal number (an indefinite L's negative entry; a zero, whose log2 is −∞, though a formula
+  // system with M_ii ≡ 0 is refused before this by its Euler–Lagrange tape); empty when every
+  // e_i is 0 (unit masses: the Jacobians are judged as they are). mutate-rules' `mass >= 0`
+  // fault is thereby the same rule.
   template <LagrangianSystem System>
   static std::vector<int> balancing(const CaseContext<System>& context) {
-    using std::isfinite, std::log2, std::lround;
+    using std::isnormal, std::log2, std::lround;
     const auto d = lagrangian_derivatives(context.system, context.initial.q, context.initial.w);
     std::vector<int> exponents(static_cast<std::size_t>(context.n), 0);
     bool any = false;
     for (int i = 0; i < context.n; ++i) {
       const double mass = static_cast<double>(d.d2L_dw2(i, i));
-      if (!(isfinite(mass) && mass > 0)) continue;
+      if (!(isnormal(mass) && mass > 0)) continue;
       exponents[static_cast<std::size_t>(i)] = static_cast<int>(lround(log2(mass) / 2));
       any = any || exponents[static_cast<std::size_t>(i)] != 0;
     }

@@ -23,6 +23,7 @@
 #include "core/qxq/del_evolution.hpp"
 #include "core/qxq/discrete_lagrangian.hpp"
 #include "core/structure/energy.hpp"
+#include "tests/chain_formula.hpp"
 #include "tests/test_scalars.hpp"
 
 namespace vivv {
@@ -46,23 +47,13 @@ FormulaSystemDefinition gyroscopic_chain(int n) {
   return {"gyroscopic-chain", text, parse_formula(text), q, w, {}, {}, nullptr};
 }
 
+// The chain's state (tests/chain_formula.hpp), exact in every scalar.
 template <class T>
 State<T, any_size> gyroscopic_state(int n) {
-  State<T, any_size> x{zero_vector<T, any_size>(n), zero_vector<T, any_size>(n)};
-  for (int i = 0; i < n; ++i) x.q[i] = T(i % 5 - 2) / 10, x.w[i] = T(i % 3 - 1) / 4;
-  return x;
+  return testing::chain_state<T, any_size>(n);
 }
 
-template <class T, int R, int C>
-T block_distance(const Matrix<T, R, C>& a, const Matrix<T, R, C>& b) {
-  EXPECT_EQ(a.rows(), b.rows());
-  EXPECT_EQ(a.cols(), b.cols());
-  using std::abs;
-  T largest = 0;
-  for (int i = 0; i < a.rows(); ++i)
-    for (int j = 0; j < a.cols(); ++j) largest = nan_max(largest, T(abs(T(a(i, j) - b(i, j)))));
-  return largest;
-}
+using testing::distance;
 
 template <class T>
 std::vector<QxQDiscretization<T>> rules(const FormulaSystem<T, any_size>& system) {
@@ -106,38 +97,38 @@ void expect_dense_numbers(int n) {
     const auto b = discrete_legendre(dense, dense_rule, x.q, x1, h);
     using std::abs;
     EXPECT_LE(abs(T(a.value - b.value)), tolerance);
-    EXPECT_LE(block_distance(a.p_begin, b.p_begin), tolerance);
-    EXPECT_LE(block_distance(a.p_end, b.p_end), tolerance);
-    EXPECT_LE(block_distance(a.dp_begin_dq_b, b.dp_begin_dq_b), tolerance / h);
-    EXPECT_LE(block_distance(a.dp_begin_dq_e, b.dp_begin_dq_e), tolerance / h);
-    EXPECT_LE(block_distance(a.dp_end_dq_b, b.dp_end_dq_b), tolerance / h);
-    EXPECT_LE(block_distance(a.dp_end_dq_e, b.dp_end_dq_e), tolerance / h);
+    EXPECT_LE(distance(a.p_begin, b.p_begin), tolerance);
+    EXPECT_LE(distance(a.p_end, b.p_end), tolerance);
+    EXPECT_LE(distance(a.dp_begin_dq_b, b.dp_begin_dq_b), tolerance / h);
+    EXPECT_LE(distance(a.dp_begin_dq_e, b.dp_begin_dq_e), tolerance / h);
+    EXPECT_LE(distance(a.dp_end_dq_b, b.dp_end_dq_b), tolerance / h);
+    EXPECT_LE(distance(a.dp_end_dq_e, b.dp_end_dq_e), tolerance / h);
     const auto momenta = discrete_momenta(sparse, rule, x.q, x1, h);
-    EXPECT_LE(block_distance(momenta.p_begin, b.p_begin), tolerance);
-    EXPECT_LE(block_distance(momenta.p_end, b.p_end), tolerance);
+    EXPECT_LE(distance(momenta.p_begin, b.p_begin), tolerance);
+    EXPECT_LE(distance(momenta.p_end, b.p_end), tolerance);
     const auto block = sparse_begin_momentum(sparse, rule, x.q, x1, h);
-    EXPECT_LE(block_distance(Matrix<T, any_size, any_size>(block.dp_begin_dq_e), b.dp_begin_dq_e), tolerance / h);
+    EXPECT_LE(distance(Matrix<T, any_size, any_size>(block.dp_begin_dq_e), b.dp_begin_dq_e), tolerance / h);
 
     const auto [y2, sparse_report] = del_step(sparse, matched_scheme(rule), x.q, x1, h);
     const auto [z2, dense_report] = del_step(dense, matched_scheme(dense_rule), x.q, x1, h);
     ASSERT_TRUE(sparse_report.converged && dense_report.converged);
     EXPECT_EQ(sparse_report.iterations, dense_report.iterations);
-    EXPECT_LE(block_distance(y2, z2), 16 * tolerance);
-    EXPECT_LE(block_distance(start_from_momentum(sparse, rule, x.q, x.w, h), start_from_momentum(dense, dense_rule, x.q, x.w, h)),
+    EXPECT_LE(distance(y2, z2), 16 * tolerance);
+    EXPECT_LE(distance(start_from_momentum(sparse, rule, x.q, x.w, h), start_from_momentum(dense, dense_rule, x.q, x.w, h)),
               16 * tolerance);
   }
 
   const auto c = lagrangian_derivatives(sparse, x.q, x.w);
   const auto d = lagrangian_derivatives(dense, x.q, x.w);
-  EXPECT_LE(block_distance(c.dL_dq, d.dL_dq), tolerance);
-  EXPECT_LE(block_distance(c.dL_dw, d.dL_dw), tolerance);
-  EXPECT_LE(block_distance(c.d2L_dw2, d.d2L_dw2), tolerance);
-  EXPECT_LE(block_distance(c.d2L_dwdq, d.d2L_dwdq), tolerance);
-  EXPECT_LE(block_distance(momentum(sparse, x.q, x.w), momentum(dense, x.q, x.w)), tolerance);
+  EXPECT_LE(distance(c.dL_dq, d.dL_dq), tolerance);
+  EXPECT_LE(distance(c.dL_dw, d.dL_dw), tolerance);
+  EXPECT_LE(distance(c.d2L_dw2, d.d2L_dw2), tolerance);
+  EXPECT_LE(distance(c.d2L_dwdq, d.d2L_dwdq), tolerance);
+  EXPECT_LE(distance(momentum(sparse, x.q, x.w), momentum(dense, x.q, x.w)), tolerance);
   using std::abs;
   EXPECT_LE(abs(T(energy(sparse, x.q, x.w) - energy(dense, x.q, x.w))), tolerance);
   const Vector<T, any_size> acceleration = euler_lagrange_acceleration(dense, x.q, x.w);
-  EXPECT_LE(block_distance(euler_lagrange_acceleration(sparse, x.q, x.w), acceleration), tolerance);
+  EXPECT_LE(distance(euler_lagrange_acceleration(sparse, x.q, x.w), acceleration), tolerance);
   std::vector<T> y(x.q.data(), x.q.data() + n);
   y.insert(y.end(), x.w.data(), x.w.data() + n);
   const std::vector<T> from_sparse_tape = euler_lagrange_tape(sparse).evaluate(y);
@@ -148,7 +139,7 @@ void expect_dense_numbers(int n) {
   }
   const Vector<T, any_size> p = momentum(dense, x.q, x.w);
   const Vector<T, any_size> guess = x.w + Vector<T, any_size>::Constant(n, T(1) / 50);
-  EXPECT_LE(block_distance(velocity_for_momentum(sparse, x.q, p, guess), x.w), tolerance);
+  EXPECT_LE(distance(velocity_for_momentum(sparse, x.q, p, guess), x.w), tolerance);
 }
 
 TYPED_TEST(SparseLegendreTest, GivesTheDenseJetsNumbersAtOneTwoAndSevenCoordinates) {
@@ -179,7 +170,7 @@ TYPED_TEST(SparseLegendreTest, ASingularSparseMatrixIsRefused) {
   dense(2, 2) = 1;
   sparse = dense.sparseView();
   ASSERT_TRUE(solve_linear(sparse, right, solution, threshold));
-  EXPECT_LE(block_distance(Vector<T, any_size>(dense * solution), right), 16 * epsilon<T>());
+  EXPECT_LE(distance(Vector<T, any_size>(dense * solution), right), 16 * epsilon<T>());
 }
 
 }  // namespace
