@@ -8,11 +8,15 @@
 // that core/ can differentiate yields its Taylor coefficients through
 // core/autodiff/taylor_expansion.hpp.
 //
-// The elimination does not pivot (a tape fixes one sequence of operations),
-// which is stable for a definite mass matrix — every catalogue system has
-// one. A pivot that is identically zero is rejected while recording; one that
-// vanishes at a visited state gives non-finite coefficients, which the flow
-// reports.
+// The elimination pivots on structure only (a tape fixes one sequence of
+// operations, recorded before any value is known): the diagonal entry is the
+// pivot unless it is identically zero, and then the first row below whose
+// entry in that column is not — so a regular but indefinite M, as of
+// L = w1 w2 − V (M = [[0, 1], [1, 0]]), is solved, not refused. That is stable
+// for a definite mass matrix — every catalogue system has one. A column with no
+// such entry is rejected while recording (M is then singular for every state);
+// a pivot that vanishes at a visited state gives non-finite coefficients, which
+// the flow reports.
 //
 // variational_tape extends a tape for x'' = a(x, x') in R^m by the
 // variational equations of its 2m first-order columns: with x = (q, δq¹…δq^{2m})
@@ -33,6 +37,13 @@
 
 namespace vivv {
 
+// What a column of d²L/dw² with no entry that is not identically zero, on or below its diagonal once
+// the columns before it are eliminated, says: M is singular at every state.
+inline std::string singular_column_message(int column) {
+  return "euler_lagrange_tape: d2L/dw2 is singular at every state: after eliminating the columns before it, "
+         "column " + std::to_string(column) + " has no entry that is not identically zero on or below its diagonal";
+}
+
 // A system whose L can be evaluated in jets over the recording scalar.
 template <class System>
 concept TapeRecordable =
@@ -46,8 +57,10 @@ concept TapeRecordable =
 // The same from L's sparse derivatives (core/autodiff/sparse_hessian.hpp), for a system sized at
 // run time: the derivative tape replayed in TapeScalar gives dL/dq and the nonzeros of d²L/dw²
 // and d²L/dw dq, and M a = rhs is eliminated on M's sparsity pattern (symmetric, so the rows a
-// pivot row updates are the columns it holds), without pivoting as above. Its tape grows like L's
-// and M's fill-in, where the dense recording is O(n³) (a jet of n² entries through every node).
+// pivot row updates are the columns it holds), pivoting on structure as above. Its tape grows like
+// L's and M's fill-in, where the dense recording is O(n³) (a jet of n² entries through every node).
+// After a row exchange the pattern is no longer symmetric, and the rows below that hold a column
+// are found by looking at each (O(n) a column, only for an M with identically zero diagonal entries).
 template <class T>
 Tape<T> sparse_euler_lagrange_tape(const SecondDerivativeTape<T>& derivatives) {
   using S = TapeScalar<T>;
@@ -70,13 +83,30 @@ Tape<T> sparse_euler_lagrange_tape(const SecondDerivativeTape<T>& derivatives) {
       rhs[r - n] = rhs[r - n] - entry * x[n + c];  // (d²L/dw_i dq_j) w_j, i = r − n, j = c
     }
   }
+  const auto holds = [&](int row, int column) {
+    const auto entry = M[row].find(column);
+    return entry != M[row].end() && !entry->second.is_constant(0);
+  };
+  bool symmetric = true;
+  std::vector<int> below;
   for (int j = 0; j < n; ++j) {
+    if (!holds(j, j)) {
+      int exchange = j + 1;
+      while (exchange < n && !holds(exchange, j)) ++exchange;
+      if (exchange == n) throw SingularLagrangianError(singular_column_message(j));
+      std::swap(M[j], M[exchange]);
+      std::swap(rhs[j], rhs[exchange]);
+      symmetric = false;
+    }
     const auto pivot = M[j].find(j);
-    if (pivot == M[j].end() || pivot->second.is_constant(0))
-      throw SingularLagrangianError("euler_lagrange_tape: d2L/dw2 has an identically zero pivot (row " +
-                                    std::to_string(j) + ")");
-    for (auto it = M[j].upper_bound(j); it != M[j].end(); ++it) {
-      const int i = it->first;
+    below.clear();
+    if (symmetric) {
+      for (auto it = M[j].upper_bound(j); it != M[j].end(); ++it) below.push_back(it->first);
+    } else {
+      for (int i = j + 1; i < n; ++i)
+        if (M[i].count(j)) below.push_back(i);
+    }
+    for (const int i : below) {
       const S factor = M[i].at(j) / pivot->second;
       for (auto k = M[j].upper_bound(j); k != M[j].end(); ++k) {
         auto [slot, inserted] = M[i].try_emplace(k->first, S(0));
@@ -122,12 +152,14 @@ Tape<typename System::Scalar> euler_lagrange_tape(const System& system) {
     }
     augmented[i][n] = rhs;
   }
-  // Gaussian elimination without pivoting, then back substitution.
+  // Gaussian elimination pivoting on structure (at the top of the file), then back substitution.
   for (int j = 0; j < n; ++j) {
-    if (augmented[j][j].is_constant(0))
-      throw SingularLagrangianError(
-          "euler_lagrange_tape: d2L/dw2 has an identically zero pivot (row " + std::to_string(j) +
-          ")");
+    if (augmented[j][j].is_constant(0)) {
+      int exchange = j + 1;
+      while (exchange < n && augmented[exchange][j].is_constant(0)) ++exchange;
+      if (exchange == n) throw SingularLagrangianError(singular_column_message(j));
+      std::swap(augmented[j], augmented[exchange]);
+    }
     for (int i = j + 1; i < n; ++i) {
       S factor = augmented[i][j] / augmented[j][j];
       for (int k = j; k <= n; ++k) augmented[i][k] = augmented[i][k] - factor * augmented[j][k];

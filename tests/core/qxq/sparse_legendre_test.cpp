@@ -8,7 +8,10 @@
 //   - a DEL step and a start from the momentum: the same q_{k+1}, in as many Newton iterations;
 //   - L's derivatives, the momentum, the energy, the Euler–Lagrange acceleration, its tape, and
 //     the inverse Legendre transform;
-//   - the sparse solve refuses a singular matrix, structurally and numerically, as the dense one.
+//   - the sparse solve refuses a singular matrix, structurally and numerically, as the dense one;
+//   - the Euler–Lagrange tape of a regular L whose d²L/dw² has identically zero diagonal entries
+//     (L = w1 w2 + ... − V) gives the acceleration of a pivoting solve at 2, 3 and 8 coordinates,
+//     sparse and dense, and one with an identically zero column is refused.
 #include "core/qxq/sparse_legendre.hpp"
 
 #include <gtest/gtest.h>
@@ -171,6 +174,65 @@ TYPED_TEST(SparseLegendreTest, ASingularSparseMatrixIsRefused) {
   sparse = dense.sparseView();
   ASSERT_TRUE(solve_linear(sparse, right, solution, threshold));
   EXPECT_LE(distance(Vector<T, any_size>(dense * solution), right), 16 * epsilon<T>());
+}
+
+// L = Σ_k w_{2k−1} w_{2k} + Σ_k w_{2k} w_{2k+1}/4 (+ w_n²/2 for odd n) − Σ cos q_i − Σ (q_{i+1} − q_i)²/2:
+// d²L/dw² is tridiagonal with a zero diagonal (but its last entry for odd n) and regular
+// (determinant ±1 at 2 and 3 coordinates), so an elimination that took the diagonal as its pivots
+// divided by zero; the tape exchanges rows instead, where the structure says an entry is zero.
+FormulaSystemDefinition indefinite_chain(int n) {
+  std::vector<std::string> q, w;
+  for (int i = 1; i <= n; ++i) q.push_back("q" + std::to_string(i)), w.push_back("w" + std::to_string(i));
+  std::string text = n % 2 ? w[n - 1] + "^2/2" : "0";
+  for (int i = 0; i + 1 < n; ++i) text += " + " + w[i] + "*" + w[i + 1] + (i % 2 ? "/4" : "");
+  for (int i = 0; i < n; ++i) {
+    text += " - cos(" + q[i] + ")";
+    if (i + 1 < n) text += " - (" + q[i + 1] + " - " + q[i] + ")^2/2";
+  }
+  return {"indefinite-chain", text, parse_formula(text), q, w, {}, {}, nullptr};
+}
+
+template <class T, int N>
+void expect_pivoted_acceleration(int n) {
+  const auto sparse = make_formula_system<T, N>(indefinite_chain(n));
+  const auto dense = [&] {
+    auto without = sparse;
+    without.derivatives = nullptr;
+    return without;
+  }();
+  const State<T, N> x = testing::chain_state<T, N>(n);
+  const Vector<T, N> acceleration = euler_lagrange_acceleration(dense, x.q, x.w);
+  // The control: the pivoting solve's acceleration does solve M a = dL/dq (no dL/dw dq here).
+  const auto d = lagrangian_derivatives(dense, x.q, x.w);
+  EXPECT_LE(distance(Vector<T, N>(d.d2L_dw2 * acceleration), Vector<T, N>(d.dL_dq)), 64 * epsilon<T>());
+  std::vector<T> y(x.q.data(), x.q.data() + n);
+  y.insert(y.end(), x.w.data(), x.w.data() + n);
+  using std::abs;
+  for (const auto* system : {&sparse, &dense}) {
+    if (system == &sparse && !sparse.derivatives) continue;  // fixed sizes have no sparse derivatives
+    const std::vector<T> from_tape = euler_lagrange_tape(*system).evaluate(y);
+    for (int i = 0; i < n; ++i)
+      EXPECT_LE(abs(T(from_tape[i] - acceleration[i])), 64 * epsilon<T>()) << (system == &sparse ? "sparse " : "dense ") << i;
+  }
+}
+
+TYPED_TEST(SparseLegendreTest, AZeroDiagonalOfTheMassMatrixIsPivotedNotRefused) {
+  expect_pivoted_acceleration<TypeParam, 2>(2);
+  for (int n : {2, 3, 8}) {
+    SCOPED_TRACE(std::to_string(n) + " coordinates");
+    expect_pivoted_acceleration<TypeParam, any_size>(n);
+  }
+  // The negative: w2 enters L nowhere, so column 2 of d²L/dw² is identically zero.
+  for (int n : {2, 3}) {
+    std::vector<std::string> q{"q1", "q2", "q3"}, w{"w1", "w2", "w3"};
+    q.resize(n), w.resize(n);
+    const std::string text = n == 2 ? "w1^2/2 - q1^2 - q2^2" : "w1^2/2 + w1*w3 - q1^2 - q2^2 - q3^2";
+    const auto singular = make_formula_system<TypeParam, any_size>({"singular", text, parse_formula(text), q, w, {}, {}, nullptr});
+    auto dense = singular;
+    dense.derivatives = nullptr;
+    EXPECT_THROW(euler_lagrange_tape(singular), SingularLagrangianError) << n;
+    EXPECT_THROW(euler_lagrange_tape(dense), SingularLagrangianError) << n;
+  }
 }
 
 }  // namespace
