@@ -52,6 +52,13 @@ struct OneStepMap {
   virtual State<T, n> step(const State<T, n>& x, const T& h) const = 0;
   // ∂(q', p')/∂(q, p) at x.
   virtual Matrix<T, twice(n), twice(n)> jacobian(const State<T, n>& x, const T& h) const = 0;
+  // Φ_h^count(x) at once, where the map can take several steps a call cheaper than one at a time
+  // (a program that took up the protocol's "steps" extension: only the last state crosses its
+  // pipe); nullopt where it cannot, or where a state on the way left the finite numbers or the
+  // problem's scale: the caller then takes the steps one at a time, which says where.
+  virtual std::optional<State<T, n>> steps(const State<T, n>& /*x*/, const T& /*h*/, long /*count*/) const {
+    return std::nullopt;
+  }
   // The relative rounding of jacobian()'s entries: ε of T for a Jacobian computed exactly (jets,
   // the implicit function theorem, a program's own), larger for one by differences at a width
   // the map's precision allows (a double program: about ε^(2/3)). symplecticity's tolerance is

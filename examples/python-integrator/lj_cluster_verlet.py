@@ -6,11 +6,13 @@ The forces of all pairs at once, vectorised: O(N^2) a step for N atoms, no Pytho
 atoms. Greeted with a formula system whose coordinates are a family x[N, 3] and whose
 parameters include eps and sigma, it steps that cluster; any other system is declined.
 
-    python3 lj_cluster_verlet.py [--jacobian] [--kick K]
+    python3 lj_cluster_verlet.py [--jacobian] [--kick K] [--no-batch]
 
 --jacobian sends the map's own Jacobian (2n x 2n, from the force's derivative, the pairs'
 3 x 3 blocks assembled at once). --kick K (default 1/2) is the first kick's fraction of h:
 0.5 + 1e-3 is the bug this example's negative case plants (order 1, still symplectic).
+--no-batch declines the extension "steps" (every step of a run crosses the pipe: what the extension
+saves, measured in docs/process-protocol.md).
 """
 import argparse
 import os
@@ -70,6 +72,7 @@ def options(argv):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--jacobian", action="store_true", help="send the map's own Jacobian")
     parser.add_argument("--kick", default="0.5", help="the first kick's fraction of h (0.5 is Verlet)")
+    parser.add_argument("--no-batch", action="store_true", help="one request a step (decline \"steps\")")
     return parser.parse_args(argv)
 
 
@@ -93,4 +96,5 @@ if __name__ == "__main__":
         dp_dp = eye + (1 - a) * h * K1 @ dq_dp
         return np.block([[dq_dq, dq_dp], [dp_dq, dp_dp]])
 
-    vivv_map.serve(step, jacobian=jacobian if args.jacobian else None, arithmetic="numpy", setup=cluster.setup)
+    vivv_map.serve(step, jacobian=jacobian if args.jacobian else None, arithmetic="numpy", setup=cluster.setup,
+                   batch=not args.no_batch)

@@ -63,6 +63,39 @@ shared_map_trajectory(const CaseContext<System>& context, const typename System:
   return kept;
 }
 
+// Whether a claim of the case reads a one-step map's states between x_0 and x_N (the callers of
+// visit_map_trajectories below): then each run is kept whole, and no end state is taken alone.
+inline bool reads_map_states_between(const CaseSpec& spec) {
+  for (const std::string& claim : spec.claims)
+    if (claim == "symplecticity" || claim == "energy-behaviour" || claim == "discrete-noether") return true;
+  return false;
+}
+
+// x_N of the case's one-step map run for N steps at h: taken at once where the map can
+// (OneStepMap::steps: a program that took up "steps" answers one request for the whole run) and no
+// claim of the case reads the states between; otherwise the kept run's last state. A map that
+// cannot finish at once (a state on the way not finite, or beyond the problem's scale) is run one
+// step at a time, so that where it left is found and said as for any run.
+template <LagrangianSystem System>
+State<typename System::Scalar, System::dimension> map_end_state(const CaseContext<System>& context,
+                                                                const typename System::Scalar& h, int N) {
+  if (context.map_runs.count(N) || reads_map_states_between(context.spec))
+    return shared_map_trajectory(context, h, N)->back();
+  if (const auto kept = context.map_ends.find(N); kept != context.map_ends.end()) return kept->second;
+  const CostMeter meter;
+  const std::optional<long> reported_before = context.map->reported_evaluations();
+  const auto end = context.map->steps(context.initial, h, N);
+  if (!end) return shared_map_trajectory(context, h, N)->back();
+  context.run_costs[N] = meter.cost();
+  if (context.spec.discretization.kind == "process") {  // as in shared_map_trajectory
+    context.run_costs[N].lagrangian_evaluations = 0;
+    if (const std::optional<long> reported_after = context.map->reported_evaluations();
+        reported_before && reported_after)
+      context.run_costs[N].program_evaluations = *reported_after - *reported_before;
+  }
+  return context.map_ends.emplace(N, *end).first->second;
+}
+
 // The TQ evolution of the case's discretization from the exact initial state over N steps at h,
 // computed once per N and shared (global-order, twin-term-invariance).
 template <LagrangianSystem System>
@@ -132,7 +165,7 @@ SweepRun<System> run_sweep(const CaseContext<System>& context, const DelScheme<t
     }
     if (context.map) {  // the one-step map from the exact initial state
       context.report(context.map->name() + " sweep N = " + std::to_string(N));
-      const State<T, System::dimension> end = shared_map_trajectory(context, h, N)->back();
+      const State<T, System::dimension> end = map_end_state(context, h, N);
       run.q_final.push_back(end.q);
       run.p_final.push_back(momentum(context.system, end.q, end.w));
       continue;

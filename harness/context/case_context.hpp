@@ -270,6 +270,9 @@ struct CaseContext {
   // What each N's run (the case's DEL, map or TQ evolution) cost: L evaluations and seconds.
   mutable std::map<int, RunCost> run_costs;
   mutable std::map<int, std::shared_ptr<const std::vector<State<T, N>>>> map_runs;
+  // The map's end state x_N alone, where no claim of the case reads the states between and the
+  // map takes N steps at once (OneStepMap::steps; global_order.hpp, map_end_state).
+  mutable std::map<int, State<T, N>> map_ends;
   mutable std::map<int, std::shared_ptr<const std::vector<State<T, N>>>> tq_runs;  // formalism "tq"
 
   CaseContext(const CaseSpec& spec_, System system_, std::function<void(const std::string&)> progress_)

@@ -23,6 +23,7 @@
 #pragma once
 
 #include <algorithm>
+#include <chrono>
 #include <iomanip>
 #include <limits>
 #include <memory>
@@ -149,6 +150,33 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     return next;
   }
 
+  // Φ_h^count(x) in few requests {"h", "q", "p", "steps": k}, for a program that took up the
+  // extension "steps": the program takes the k steps itself and answers the last state with
+  // "steps": m, the steps it took — k, or fewer where a state on the way left the finite numbers
+  // (it then answers the state before). The first request asks for 16 steps, each next one for as
+  // many as take about a second at the last one's pace (at most 16 times as many, a tenth of
+  // --process-timeout at most), so that no answer comes near the timeout however long the run.
+  // nullopt for m < k, and for an answer beyond the problem's scale or whose w Newton does not
+  // find from the run's start: the run is then taken one request a step, which finds and names
+  // the step.
+  std::optional<State<T, N>> steps(const State<T, N>& x, const T& h, long count) const override {
+    if (!process_->uses_extension(steps_extension) || count < 2) return std::nullopt;
+    State<T, N> state = x;
+    for (long left = count; left > 0;) {
+      const long asked = std::min(left, batch_);
+      const auto started = std::chrono::steady_clock::now();
+      const std::optional<State<T, N>> next = batched_request(state, h, asked);
+      if (!next) return std::nullopt;
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      const double pace = std::min(1.0, options_.timeout_seconds / 10);
+      const double paced = seconds > 0 ? asked * pace / seconds : 16.0 * asked;
+      batch_ = std::max(1L, static_cast<long>(std::min(16.0 * asked, paced)));
+      state = *next;
+      left -= asked;
+    }
+    return state;
+  }
+
   std::optional<long> reported_evaluations() const override {
     if (!process_->uses_extension(evaluations_extension)) return std::nullopt;
     return evaluations_;
@@ -200,9 +228,51 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   // The extension a program takes up to say, in each step's answer, how many evaluations (of its
   // forces, or of L) the step made: "evaluations": a whole number, 0 or more.
   static constexpr const char* evaluations_extension = "evaluations";
+  // The extension a program takes up to take several steps in one request ("steps": k), answering
+  // only the last state.
+  static constexpr const char* steps_extension = "steps";
 
  private:
   using R = mpfr_real;
+
+  // One request for `count` steps from x (extension "steps"): the end state, or nullopt (above).
+  std::optional<State<T, N>> batched_request(const State<T, N>& x, const T& h, long count) const {
+    const Vector<T, N> p = momentum_at(x);
+    nlohmann::json request = {{"h", to_decimal<T>(h)},
+                              {"q", nlohmann::json::array()},
+                              {"p", nlohmann::json::array()},
+                              {steps_extension, count}};
+    for (int i = 0; i < n; ++i) {
+      request["q"].push_back(to_decimal<T>(x.q[i]));
+      request["p"].push_back(to_decimal<T>(p[i]));
+    }
+    const nlohmann::json answer = process_->request(request);
+    const auto taken = answer.find(steps_extension);
+    if (taken == answer.end() || !taken->is_number_unsigned() ||
+        taken->get<unsigned long long>() > static_cast<unsigned long long>(count))
+      process_->fail_answer("it took up the extension \"steps\" and its answer's \"steps\" is " +
+                            (taken == answer.end() ? std::string("missing") : quoted_text(taken->dump(), 80)) +
+                            ", not the count of steps it took (a whole number, 0 to the " + std::to_string(count) +
+                            " asked for)");
+    if (process_->uses_extension(evaluations_extension)) evaluations_ += evaluations_in(answer);
+    if (taken->get<long>() < count) return std::nullopt;
+    State<T, N> end{Vector<T, N>(n), Vector<T, N>(n)};
+    Vector<T, N> p_end(n);
+    using std::abs;
+    const T bound = from_decimal<T>(bound_);
+    for (int i = 0; i < n; ++i) {
+      end.q[i] = number<T>(*process_, answer, "q", i, digits_);
+      p_end[i] = number<T>(*process_, answer, "p", i, digits_);
+      if (!(abs(end.q[i]) <= bound && abs(p_end[i]) <= bound)) return std::nullopt;
+    }
+    try {  // from x's w, steps away: where Newton does not converge from there, step by step
+      end.w = velocity_for_momentum(system_, end.q, p_end, x.w);
+    } catch (const SolverError&) {
+      return std::nullopt;
+    }
+    last_ = {end, p_end};
+    return end;
+  }
   using Differences = std::vector<std::vector<R>>;      // [j][i] = ∂y'_i/∂y_j
   using Columns = std::vector<std::vector<std::string>>;  // the same, as decimals
 
@@ -469,7 +539,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
                                      {"digits", digits},
                                      {"dimension", n},
                                      {"system", system_json_},
-                                     {"extensions", nlohmann::json::array({jacobian_extension, evaluations_extension})}};
+                                     {"extensions", nlohmann::json::array({jacobian_extension, evaluations_extension, steps_extension})}};
     return std::make_unique<MapProcess>(options_, greeting);
   }
 
@@ -542,6 +612,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   mutable T last_unit_ = 0;        // the last Jacobian's relative rounding (last_jacobian_unit)
   mutable std::optional<std::pair<State<T, N>, Vector<T, N>>> last_;  // the last answer: (q, w), p
   mutable long evaluations_ = 0;  // the "evaluations" of every step's answer so far (extension)
+  mutable long batch_ = 16;       // the steps the next request of steps() asks for (extension "steps")
   static constexpr long recheck = 8;
 };
 

@@ -94,6 +94,50 @@ def test_each_answer_counts_its_evaluations_when_offered():
     assert plain[0] == {"protocol": PROTOCOL} and "evaluations" not in plain[1]  # not offered: not sent
 
 
+@pytest.mark.parametrize("arithmetic, digits", [("mpmath", 40), ("float", 17), ("numpy", 17)])
+def test_k_steps_in_one_request_are_the_k_single_steps(arithmetic, digits):
+    pytest.importorskip(arithmetic if arithmetic != "float" else "json")
+    made = [0]
+    def counting(h, q, p):
+        made[0] += 2
+        return euler(h, q, p)
+    start = {"h": "0.125", "q": ["1"], "p": ["0.5"]}
+    batched = talk(counting, [greeting(digits, ["evaluations", "steps"]), {**start, "steps": 5}],
+                   arithmetic=arithmetic, evaluations=lambda: made[0])
+    assert batched[0] == {"protocol": PROTOCOL, "extensions": ["evaluations", "steps"]}
+    assert batched[1]["steps"] == 5 and batched[1]["evaluations"] == 10
+    single, state = [], start
+    for _ in range(5):  # the same five steps, each crossing as text
+        single = talk(euler, [greeting(digits), state], arithmetic=arithmetic)
+        state = {"h": "0.125", "q": single[1]["q"], "p": single[1]["p"]}
+    assert (batched[1]["q"], batched[1]["p"]) == (single[1]["q"], single[1]["p"])  # 17 digits carry a double
+    q, p = 1.0, 0.5
+    for _ in range(5):  # h = 1/8: every value is a short binary fraction, exact in each arithmetic
+        q, p = q + p / 8, p - q / 8
+    assert float(batched[1]["q"][0]) == q and float(batched[1]["p"][0]) == p
+
+
+def test_steps_are_taken_up_only_when_offered_and_batch_declines_them():
+    request = {"h": "0.5", "q": ["1"], "p": ["0"], "steps": 3}
+    assert talk(euler, [greeting(17), request], arithmetic="float")[1].keys() == {"q", "p"}  # one step
+    declined = talk(euler, [greeting(17, ["steps"]), request], arithmetic="float", batch=False)
+    assert declined[0] == {"protocol": PROTOCOL} and declined[1].keys() == {"q", "p"}
+    one = talk(euler, [greeting(17), {"h": "0.5", "q": ["1"], "p": ["0"]}], arithmetic="float")[1]
+    assert (declined[1]["q"], declined[1]["p"]) == (one["q"], one["p"])
+
+
+def test_a_state_that_leaves_the_finite_numbers_ends_the_steps_before_it():
+    def explode(h, q, p):  # finite twice, then infinite
+        return [q[0] * 1e200], [p[0]]
+    answers = talk(explode, [greeting(17, ["steps"]), {"h": "0.5", "q": ["1"], "p": ["2"], "steps": 4}],
+                   arithmetic="float")
+    assert answers[1]["steps"] == 1 and float(answers[1]["q"][0]) == 1e200 and float(answers[1]["p"][0]) == 2
+    for count in (0, -1, 1.5, True, "2"):
+        bad = talk(euler, [greeting(17, ["steps"]), {"h": "0.5", "q": ["1"], "p": ["0"], "steps": count}],
+                   arithmetic="float")
+        assert "steps" in bad[1]["error"], bad[1]
+
+
 def test_a_count_that_is_not_a_whole_number_or_falls_is_an_error_answer():
     request = {"h": "0.5", "q": ["1"], "p": ["0"]}
     for count, words in [(lambda: 1.5, "returned 1.5"), (lambda: True, "returned True"),

@@ -1,12 +1,16 @@
 """The loop of protocol vivv-map/1 (docs/process-protocol.md in vivv's source tree).
 
     vivv:    {"protocol": "vivv-map/1", "digits": D, "dimension": n, "system": {...},
-              "extensions": ["jacobian", "evaluations"]}
+              "extensions": ["jacobian", "evaluations", "steps"]}
     program: {"protocol": "vivv-map/1"}   or, sending its own Jacobian or its count of evaluations,
-             {"protocol": "vivv-map/1", "extensions": ["jacobian", "evaluations"]}   (or {"error": "why not"})
-    vivv:    {"h": "...", "q": ["...", ...], "p": ["...", ...]}   (+ "jacobian": true where it reads one)
+             or taking several steps a request,
+             {"protocol": "vivv-map/1", "extensions": ["jacobian", "evaluations", "steps"]}   (or {"error": "why not"})
+    vivv:    {"h": "...", "q": ["...", ...], "p": ["...", ...]}   (+ "jacobian": true where it reads one,
+                                                                   + "steps": k for k steps, when agreed)
     program: {"q": [...], "p": [...]}   (+ "jacobian": [[...], ...] when agreed and asked for,
-                                          + "evaluations": k, the step's count, when agreed)
+                                          + "evaluations": k, the step's count, when agreed,
+                                          + "steps": m, the steps taken, m < k only where a state
+                                            left the finite numbers: the state before it)
 
 until vivv closes the program's input. Numbers are decimal strings with at least D significant
 digits.
@@ -25,6 +29,7 @@ from .arithmetic import arithmetic_named
 PROTOCOL = "vivv-map/1"
 JACOBIAN = "jacobian"
 EVALUATIONS = "evaluations"
+STEPS = "steps"
 
 
 class Decline(Exception):
@@ -39,6 +44,28 @@ def _reply(output, message):
     if "\\ud" in text:
         text = json.dumps(_without_surrogates(message))
     output.write(text + "\n")
+    output.flush()
+
+
+def _reply_answer(output, answer):
+    """An answer of numbers written as decimal strings ("q", "p", "jacobian": lists of them; "evaluations":
+    a count) as one JSON line, joined directly where every string is plain text that needs no escape:
+    json.dumps escapes string by string, which at a 228 x 228 Jacobian cost more than the program's
+    own step and Jacobian together. Anything else goes through json.dumps as before."""
+    parts = []
+    for key, value in answer.items():
+        if key in (EVALUATIONS, STEPS):
+            parts.append(json.dumps(key) + ": " + json.dumps(value))
+            continue
+        rows = value if key == JACOBIAN else [value]
+        joined = ['["' + '", "'.join(row) + '"]' if row else "[]" for row in rows]
+        text = ", ".join(joined)
+        if not text.isascii() or "\\" in text or text.count('"') != 2 * sum(len(row) for row in rows) or \
+                not text.isprintable():
+            _reply(output, answer)
+            return
+        parts.append(json.dumps(key) + ": " + ("[" + text + "]" if key == JACOBIAN else text))
+    output.write("{" + ", ".join(parts) + "}\n")
     output.flush()
 
 
@@ -146,6 +173,10 @@ def _matrix(result, size, function):
 def _written(values, numbers, function, returned):
     """`values` as the arithmetic's decimal strings, or BadAnswer naming the function and the value
     that has none (an int beyond a double's range, an object whose conversion raises)."""
+    try:  # all at once; the value at fault is found one by one below
+        return numbers.texts(values)
+    except (ArithmeticError, ValueError, TypeError):
+        pass
     text = []
     for x in values:
         try:
@@ -156,7 +187,8 @@ def _written(values, numbers, function, returned):
     return text
 
 
-def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, evaluations=None, input=None, output=None):
+def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, evaluations=None, batch=True, input=None,
+          output=None):
     """Answer vivv's requests with step(h, q, p) -> (q', p') until vivv closes the input.
 
     arithmetic: "mpmath" (mp.dps = D), "decimal" (the context's precision = D), "float" or
@@ -171,6 +203,10 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, evaluations=N
     answer then says how many its step made (extension "evaluations"), and the report's
     work-precision diagram draws the program by that count instead of leaving it out. An exception
     in step() or jacobian() is sent to vivv as an error answer with its traceback's last line.
+    batch (default True) takes up the extension "steps": vivv may then ask for k steps in one request
+    (a run whose states in between no claim reads), and step() is called k times here, only the
+    last state crossing the pipe; a state that leaves the finite numbers ends the k early (vivv then
+    steps that run one request a step). batch=False declines it: every step crosses.
     """
     input = sys.stdin if input is None else input
     output = _protocol_channel() if output is None else output
@@ -193,18 +229,35 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, evaluations=N
     offered = greeting.get("extensions", [])
     send_jacobian = jacobian is not None and JACOBIAN in offered
     send_evaluations = evaluations is not None and EVALUATIONS in offered
-    taken = [name for name, taken in ((JACOBIAN, send_jacobian), (EVALUATIONS, send_evaluations)) if taken]
+    take_steps = batch and STEPS in offered
+    taken = [name for name, taken in ((JACOBIAN, send_jacobian), (EVALUATIONS, send_evaluations),
+                                      (STEPS, take_steps)) if taken]
     _reply(output, {"protocol": PROTOCOL, **({"extensions": taken} if taken else {})})
     for line in input:
         request = json.loads(line)
         h = numbers.number(request["h"])
-        q = numbers.vector(numbers.number(x) for x in request["q"])
-        p = numbers.vector(numbers.number(x) for x in request["p"])
+        q = numbers.vector(numbers.numbers(request["q"]))
+        p = numbers.vector(numbers.numbers(request["p"]))
+        count = request.get(STEPS, 1) if take_steps else 1
+        if isinstance(count, bool) or not isinstance(count, int) or count < 1:
+            _reply(output, {"error": f"a request's \"steps\" is {count!r}: expected a whole number, 1 or more"})
+            return 1
         try:
             before = _count(evaluations) if send_evaluations else 0
-            result = step(h, q, p)
-            q_next, p_next = _state(result, dimension, step)
+            x, taken_steps = (q, p), 0
+            while True:  # count steps from (q, p); the states between them stay here
+                result = step(h, *x)
+                q_next, p_next = _state(result, dimension, step)
+                if count > 1 and not (numbers.finite(q_next) and numbers.finite(p_next)):
+                    q_next, p_next, result = list(x[0]), list(x[1]), x  # the state before it; vivv steps one by one
+                    break
+                taken_steps += 1
+                if taken_steps == count:
+                    break
+                x = (numbers.vector(q_next), numbers.vector(p_next))
             answer = {"q": _written(q_next, numbers, step, result), "p": _written(p_next, numbers, step, result)}
+            if STEPS in request and take_steps:
+                answer[STEPS] = taken_steps
             if send_evaluations:
                 made = _count(evaluations) - before
                 if made < 0:
@@ -221,7 +274,7 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, evaluations=N
         except (Exception, SystemExit) as error:  # the user's code (sys.exit() in step() too): named, with its line
             _reply(output, {"error": _described(error)})
             return 1
-        _reply(output, answer)
+        _reply_answer(output, answer)
     return 0
 
 
