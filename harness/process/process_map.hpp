@@ -126,14 +126,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   }
 
   State<T, N> step(const State<T, N>& x, const T& h) const override {
-    const Vector<T, N> p = momentum_at(x);
-    nlohmann::json request = {
-        {"h", to_decimal<T>(h)}, {"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
-    for (int i = 0; i < n; ++i) {
-      request["q"].push_back(to_decimal<T>(x.q[i]));
-      request["p"].push_back(to_decimal<T>(p[i]));
-    }
-    const nlohmann::json answer = process_->request(request);
+    const nlohmann::json answer = process_->request(state_request(x, h));
     State<T, N> next{Vector<T, N>(n), Vector<T, N>(n)};
     Vector<T, N> p_next(n);
     for (int i = 0; i < n; ++i) {
@@ -235,17 +228,21 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
  private:
   using R = mpfr_real;
 
-  // One request for `count` steps from x (extension "steps"): the end state, or nullopt (above).
-  std::optional<State<T, N>> batched_request(const State<T, N>& x, const T& h, long count) const {
+  // {"h": h, "q": x's q, "p": FL(x)}: a step's request, as decimals of the working precision.
+  nlohmann::json state_request(const State<T, N>& x, const T& h) const {
     const Vector<T, N> p = momentum_at(x);
-    nlohmann::json request = {{"h", to_decimal<T>(h)},
-                              {"q", nlohmann::json::array()},
-                              {"p", nlohmann::json::array()},
-                              {steps_extension, count}};
+    nlohmann::json request = {{"h", to_decimal<T>(h)}, {"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
     for (int i = 0; i < n; ++i) {
       request["q"].push_back(to_decimal<T>(x.q[i]));
       request["p"].push_back(to_decimal<T>(p[i]));
     }
+    return request;
+  }
+
+  // One request for `count` steps from x (extension "steps"): the end state, or nullopt (above).
+  std::optional<State<T, N>> batched_request(const State<T, N>& x, const T& h, long count) const {
+    nlohmann::json request = state_request(x, h);
+    request[steps_extension] = count;
     const nlohmann::json answer = process_->request(request);
     const auto taken = answer.find(steps_extension);
     if (taken == answer.end() || !taken->is_number_unsigned() ||
