@@ -38,6 +38,23 @@ std::vector<State<typename System::Scalar, System::dimension>> map_trajectory(co
   return x;
 }
 
+// What the map's run of N steps cost, from `meter` started before it and the program's count of
+// evaluations then (`reported_before`). A map in another program evaluates its own L (or forces),
+// which vivv does not see: what vivv counted are its own conversions between w and p, not the
+// method's cost. Recorded as 0 (the report writes null: unknown); the program's own count where its
+// answers give one.
+template <LagrangianSystem System>
+void record_map_run_cost(const CaseContext<System>& context, int N, const CostMeter& meter,
+                         const std::optional<long>& reported_before) {
+  context.run_costs[N] = meter.cost();
+  if (context.spec.discretization.kind == "process") {
+    context.run_costs[N].lagrangian_evaluations = 0;
+    if (const std::optional<long> reported_after = context.map->reported_evaluations();
+        reported_before && reported_after)
+      context.run_costs[N].program_evaluations = *reported_after - *reported_before;
+  }
+}
+
 // The case's one-step map run for N steps at h, computed once and kept in the context for the
 // other claims that walk it.
 template <LagrangianSystem System>
@@ -49,16 +66,7 @@ shared_map_trajectory(const CaseContext<System>& context, const typename System:
     const std::optional<long> reported_before = context.map->reported_evaluations();
     kept = std::make_shared<const std::vector<State<typename System::Scalar, System::dimension>>>(
         map_trajectory(context, h, N));
-    context.run_costs[N] = meter.cost();
-    // A map in another program evaluates its own L (or forces), which vivv does not see: what
-    // vivv counted are its own conversions between w and p, not the method's cost. Recorded as 0
-    // (the report writes null: unknown); the program's own count where its answers give one.
-    if (context.spec.discretization.kind == "process") {
-      context.run_costs[N].lagrangian_evaluations = 0;
-      if (const std::optional<long> reported_after = context.map->reported_evaluations();
-          reported_before && reported_after)
-        context.run_costs[N].program_evaluations = *reported_after - *reported_before;
-    }
+    record_map_run_cost(context, N, meter, reported_before);
   }
   return kept;
 }
@@ -86,13 +94,7 @@ State<typename System::Scalar, System::dimension> map_end_state(const CaseContex
   const std::optional<long> reported_before = context.map->reported_evaluations();
   const auto end = context.map->steps(context.initial, h, N);
   if (!end) return shared_map_trajectory(context, h, N)->back();
-  context.run_costs[N] = meter.cost();
-  if (context.spec.discretization.kind == "process") {  // as in shared_map_trajectory
-    context.run_costs[N].lagrangian_evaluations = 0;
-    if (const std::optional<long> reported_after = context.map->reported_evaluations();
-        reported_before && reported_after)
-      context.run_costs[N].program_evaluations = *reported_after - *reported_before;
-  }
+  record_map_run_cost(context, N, meter, reported_before);
   return context.map_ends.emplace(N, *end).first->second;
 }
 
