@@ -35,6 +35,7 @@
 #include "core/structure/energy.hpp"
 #include "core/maps/one_step_map.hpp"
 #include "core/platform/text.hpp"
+#include "harness/process/answer_fields.hpp"
 #include "harness/process/program.hpp"
 
 namespace vivv {
@@ -130,8 +131,8 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     State<T, N> next{Vector<T, N>(n), Vector<T, N>(n)};
     Vector<T, N> p_next(n);
     for (int i = 0; i < n; ++i) {
-      next.q[i] = number<T>(*process_, answer, "q", i, digits_);
-      p_next[i] = number<T>(*process_, answer, "p", i, digits_);
+      next.q[i] = answer_number<T>(*process_, answer, "q", i, n, digits_);
+      p_next[i] = answer_number<T>(*process_, answer, "p", i, n, digits_);
     }
     for (int i = 0; i < n; ++i) {
       require_within_scale(*process_, next.q[i], "q", i, h);
@@ -139,7 +140,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     }
     next.w = velocity_for_momentum(system_, next.q, p_next, x.w);
     last_ = {next, p_next};
-    if (process_->uses_extension(evaluations_extension)) evaluations_ += evaluations_in(answer);
+    count_evaluations(answer);
     return next;
   }
 
@@ -239,27 +240,30 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     return request;
   }
 
+  // A program that took up "evaluations" says in each step's answer how many it made: added up.
+  void count_evaluations(const nlohmann::json& answer) const {
+    if (process_->uses_extension(evaluations_extension))
+      evaluations_ += answer_count(*process_, answer, evaluations_extension, 1000000000000L,
+                                   "the count of evaluations this step made (a whole number, 0 to 10^12)");
+  }
+
   // One request for `count` steps from x (extension "steps"): the end state, or nullopt (above).
   std::optional<State<T, N>> batched_request(const State<T, N>& x, const T& h, long count) const {
     nlohmann::json request = state_request(x, h);
     request[steps_extension] = count;
     const nlohmann::json answer = process_->request(request);
-    const auto taken = answer.find(steps_extension);
-    if (taken == answer.end() || !taken->is_number_unsigned() ||
-        taken->get<unsigned long long>() > static_cast<unsigned long long>(count))
-      process_->fail_answer("it took up the extension \"steps\" and its answer's \"steps\" is " +
-                            (taken == answer.end() ? std::string("missing") : quoted_text(taken->dump(), 80)) +
-                            ", not the count of steps it took (a whole number, 0 to the " + std::to_string(count) +
-                            " asked for)");
-    if (process_->uses_extension(evaluations_extension)) evaluations_ += evaluations_in(answer);
-    if (taken->get<long>() < count) return std::nullopt;
+    const long taken = answer_count(*process_, answer, steps_extension, count,
+                                    "the count of steps it took (a whole number, 0 to the " + std::to_string(count) +
+                                        " asked for)");
+    count_evaluations(answer);
+    if (taken < count) return std::nullopt;
     State<T, N> end{Vector<T, N>(n), Vector<T, N>(n)};
     Vector<T, N> p_end(n);
     using std::abs;
     const T bound = from_decimal<T>(bound_);
     for (int i = 0; i < n; ++i) {
-      end.q[i] = number<T>(*process_, answer, "q", i, digits_);
-      p_end[i] = number<T>(*process_, answer, "p", i, digits_);
+      end.q[i] = answer_number<T>(*process_, answer, "q", i, n, digits_);
+      p_end[i] = answer_number<T>(*process_, answer, "p", i, n, digits_);
       if (!(abs(end.q[i]) <= bound && abs(p_end[i]) <= bound)) return std::nullopt;
     }
     try {  // from x's w, steps away: where Newton does not converge from there, step by step
@@ -293,8 +297,8 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
               i == j ? to_decimal<R>(side == 0 ? R(yj + delta) : R(yj - delta)) : y[i]);
         const nlohmann::json answer = process.request(request);
         for (int i = 0; i < n; ++i) {
-          images[side][i] = number<R>(process, answer, "q", i, digits);
-          images[side][n + i] = number<R>(process, answer, "p", i, digits);
+          images[side][i] = answer_number<R>(process, answer, "q", i, n, digits);
+          images[side][n + i] = answer_number<R>(process, answer, "p", i, n, digits);
           require_within_scale(process, images[side][i], "q", i, h);
           require_within_scale(process, images[side][n + i], "p", i, h);
         }
@@ -388,7 +392,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
         process_->fail_answer("jacobian[" + std::to_string(i) + "] is " + quoted_text(row.dump(), 200) +
                               ", not a row of " + std::to_string(size) + " decimal strings");
       for (int j = 0; j < 2 * n; ++j)
-        jacobian(i, j) = decimal<T>(*process_, row[static_cast<std::size_t>(j)],
+        jacobian(i, j) = answer_decimal<T>(*process_, row[static_cast<std::size_t>(j)],
                                     "jacobian[" + std::to_string(i) + "][" + std::to_string(j) + "]",
                                     digits_);
     }
@@ -442,8 +446,8 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
       const nlohmann::json answer = process_->request(request);
       std::vector<R> out(2 * n);
       for (int i = 0; i < n; ++i) {
-        out[i] = number<R>(*process_, answer, "q", i, digits_);
-        out[n + i] = number<R>(*process_, answer, "p", i, digits_);
+        out[i] = answer_number<R>(*process_, answer, "q", i, n, digits_);
+        out[n + i] = answer_number<R>(*process_, answer, "p", i, n, digits_);
         require_within_scale(*process_, out[i], "q", i, h);
         require_within_scale(*process_, out[n + i], "p", i, h);
       }
@@ -538,55 +542,6 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
                                      {"system", system_json_},
                                      {"extensions", nlohmann::json::array({jacobian_extension, evaluations_extension, steps_extension})}};
     return std::make_unique<MapProcess>(options_, greeting);
-  }
-
-  // A step's "evaluations" (extension "evaluations"): a JSON whole number from 0 to 10^12 (a count
-  // is not a measurement: a number, not a decimal string); anything else ends the case, naming it.
-  long evaluations_in(const nlohmann::json& answer) const {
-    const auto found = answer.find(evaluations_extension);
-    if (found == answer.end() || !found->is_number_unsigned() || found->get<unsigned long long>() > 1000000000000ULL)
-      process_->fail_answer("it took up the extension \"evaluations\" and its answer's \"evaluations\" is " +
-                            (found == answer.end() ? std::string("missing") : quoted_text(found->dump(), 80)) +
-                            ", not the count of evaluations this step made (a whole number, 0 to 10^12)");
-    return static_cast<long>(found->get<unsigned long long>());
-  }
-
-  // answer[key][i], a decimal string with at least `digits` significant digits (or zero), in S.
-  template <class S>
-  S number(const MapProcess& process, const nlohmann::json& answer, const char* key, int i,
-           int digits) const {
-    const std::string field = std::string(key) + "[" + std::to_string(i) + "]";
-    if (!answer.contains(key) || !answer[key].is_array() ||
-        answer[key].size() != static_cast<std::size_t>(n))
-      process.fail_answer(
-          "expected \"" + std::string(key) + "\": an array of " + std::to_string(n) +
-          " decimal strings (the system has " + std::to_string(n) + " coordinates), got " +
-          (answer.contains(key) ? quoted_text(answer[key].dump(), 200) : std::string("none")));
-    return decimal<S>(process, answer[key][static_cast<std::size_t>(i)], field, digits);
-  }
-  // `value`, the answer's `field`, as a decimal string with at least `digits` significant digits
-  // (or zero), in S.
-  template <class S>
-  static S decimal(const MapProcess& process, const nlohmann::json& value, const std::string& field,
-                   int digits) {
-    if (!value.is_string())
-      process.fail_answer(
-          field + " is " + quoted_text(value.dump(), 100) +
-          ", not a decimal string (a JSON number would carry a double's 17 digits at most)");
-    const std::string text = value.get<std::string>();
-    const int significant = significant_digits(text);
-    if (significant < 0)
-      process.fail_answer(field + " = \"" + quoted_text(text, 100) + "\" is not a decimal number");
-    if (significant > 0 && significant < digits)
-      process.fail_answer(field + " = \"" + quoted_text(text, 100) + "\" has " +
-                          std::to_string(significant) +
-                          " significant digits, and the greeting asked for " +
-                          std::to_string(digits) + " (trailing zeros count: write them)");
-    try {
-      return from_decimal<S>(text);
-    } catch (const std::exception& error) {  // beyond the scalar's range (float128 and MPFR too)
-      process.fail_answer(field + ": " + error.what());
-    }
   }
 
   System system_;
