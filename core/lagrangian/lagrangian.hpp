@@ -20,7 +20,8 @@ namespace vivv {
 
 // The evaluations of L in this thread, counted by every system vivv runs (the catalogue's and
 // formula systems): a run's cost that does not depend on the machine (its work-precision
-// diagram). Counting is one increment per evaluation, in any scalar or jet.
+// diagram). Counting is one increment per evaluation, in any scalar or jet; a system sized at run
+// time counts each run of L's derivative tape (SparselyDifferentiated below), as one evaluation.
 inline thread_local long lagrangian_evaluations = 0;
 inline void count_lagrangian_evaluation() { ++lagrangian_evaluations; }
 
@@ -111,6 +112,7 @@ EdgePushed<typename System::Scalar> sparse_gradient(const System& system, const 
   const int n = static_cast<int>(q.size());
   std::vector<typename System::Scalar> x(2 * n);
   for (int i = 0; i < n; ++i) x[i] = q[i], x[n + i] = w[i];
+  count_lagrangian_evaluation();
   return system.derivatives->evaluate_gradient(x.data());
 }
 
@@ -142,6 +144,7 @@ auto lagrangian_derivatives(const System& system,
     if (system.derivatives) {
       std::vector<T> x(2 * n);
       for (int i = 0; i < n; ++i) x[i] = q[i], x[n + i] = w[i];
+      count_lagrangian_evaluation();
       const EdgePushed<T> L = system.derivatives->evaluate(x.data());
       LagrangianDerivatives<T, N> d(n);
       d.d2L_dw2.setZero(), d.d2L_dwdq.setZero();
@@ -241,6 +244,7 @@ auto sparse_euler_lagrange_acceleration(const System& system, const VectorOf<Sys
   const int n = static_cast<int>(q.size());
   std::vector<T> x(2 * n);
   for (int i = 0; i < n; ++i) x[i] = q[i], x[n + i] = w[i];
+  count_lagrangian_evaluation();
   const EdgePushed<T> L = system.derivatives->evaluate(x.data());
   if (!isfinite(L.value))
     throw SingularLagrangianError("L(q, w) is not finite at q = " + to_decimal<T>(q[0]) + ", w = " +
