@@ -65,6 +65,10 @@ class UserMap final : public SeparableMap<UserMap<Method, T, n>, T, n> {
     auto acceleration = [&](const Coordinates<S, n>& at) { return Base::times(this->system().inverse_mass, force(at)); };
     if constexpr (requires { method_.step(q, w, h, acceleration); }) {
       method_.step(q, w, h, acceleration);
+    } else if (q.size() == 1) {
+      step_in_array<1>(q, w, h, acceleration);
+    } else if (q.size() == 2) {
+      step_in_array<2>(q, w, h, acceleration);
     } else if (q.size() == 3) {
       step_in_array<3>(q, w, h, acceleration);
     } else if (q.size() == 4) {
@@ -76,8 +80,9 @@ class UserMap final : public SeparableMap<UserMap<Method, T, n>, T, n> {
     }
   }
 
-  // A method written for std::array<S, k> on a system sized at run time (k = 3, 4: what vivv
-  // compiled for such methods before sizes were run-time ones).
+  // A method written for std::array<S, k> on a system sized at run time (k = 1 … 4: what vivv
+  // compiled for such methods before sizes were run-time ones; outside MPFR, systems of one and
+  // two coordinates are sized at run time too).
   template <std::size_t k, class P, class S, class Acceleration>
   void step_in_array(P& q, P& w, const S& h, const Acceleration& acceleration) const {
     std::array<S, k> x, v;
