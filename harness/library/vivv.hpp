@@ -233,9 +233,12 @@ void register_map(const std::string& name, int order, Method method) {
       return std::shared_ptr<const OneStepMap<T, n>>(std::make_shared<const UserMap<Method, T, n>>(info, method, system));
     };
   };
+  // Fixed sizes 1 and 2 in MPFR alone: the other scalars size every system at run time.
   auto add_sizes = [&]<class T>() {
-    add.template operator()<T, 1>();
-    add.template operator()<T, 2>();
+    if constexpr (is_mpfr_v<T>) {
+      add.template operator()<T, 1>();
+      add.template operator()<T, 2>();
+    }
     add.template operator()<T, any_size>();
   };
   add_sizes.template operator()<double>();
