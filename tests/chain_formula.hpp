@@ -11,6 +11,7 @@
 
 #include "cases/formula_parser.hpp"
 #include "core/formulas/formula_system.hpp"
+#include "core/lagrangian/state.hpp"
 
 namespace vivv::testing {
 

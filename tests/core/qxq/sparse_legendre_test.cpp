@@ -23,6 +23,7 @@
 #include "core/formulas/formula_discretization.hpp"
 #include "core/formulas/formula_system.hpp"
 #include "core/lagrangian/euler_lagrange_tape.hpp"
+#include "core/lagrangian/state.hpp"
 #include "core/qxq/del_evolution.hpp"
 #include "core/qxq/discrete_lagrangian.hpp"
 #include "core/structure/energy.hpp"
