@@ -80,13 +80,14 @@ inline std::vector<SystemInfo> system_catalogue() {
 }
 
 // Builds the system `name` in scalar T with `parameters` (decimal strings in
-// the order of its ParameterSpec list) and returns f(system).
-template <class T, class F>
+// the order of its ParameterSpec list) and returns f(system); `Systems`, a tuple of some of
+// the catalogue's systems in T, are the candidates (an instantiation of f for each).
+template <class T, class Systems = CatalogueSystems<T>, class F>
 auto visit_system(const std::string& name, const std::vector<std::string>& parameters,
                             F&& f) {
   return std::apply(
       [&](auto... candidates) {
-        using Result = decltype(f(std::get<0>(CatalogueSystems<T>{})));
+        using Result = decltype(f(std::get<0>(Systems{})));
         if constexpr (std::is_void_v<Result>) {
           bool found = false;
           (
@@ -115,7 +116,7 @@ auto visit_system(const std::string& name, const std::vector<std::string>& param
           return std::move(*result);
         }
       },
-      CatalogueSystems<T>{});
+      Systems{});
 }
 
 }  // namespace vivv

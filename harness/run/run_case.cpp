@@ -10,6 +10,7 @@
 #include "harness/claims/registry.hpp"
 #include "harness/verdicts/order_fit.hpp"
 #include "harness/run/run_system.hpp"
+#include "references/reference_flow.hpp"
 
 namespace vivv {
 
@@ -59,8 +60,33 @@ std::optional<std::string> unsettled_series(const std::vector<ClaimResult>& clai
 
 namespace {
 
-// `spec` run in scalar T: formula systems of any dimension in every scalar, catalogue systems
-// compiled in MPFR and through their formula twins in the others.
+// The catalogue systems compiled in MPFR: those whose reference is a closed-form flow
+// (references/reference_flow.hpp), which their formula twins would lose. Each compiled system
+// costs about a seventh of its MPFR unit's build (docs/build.md); every other catalogue system
+// runs through its formula twin, in MPFR as in the other scalars. harness/CMakeLists.txt
+// instantiates run_on_system for exactly these.
+template <class T>
+using CompiledCatalogueSystems = std::tuple<HarmonicOscillator<T>, Pendulum<T>, Kepler<T>>;
+
+template <class... Systems>
+constexpr int closed_forms_among(std::tuple<Systems...>) {
+  return (int{has_closed_form_v<Systems>} + ...);
+}
+static_assert(closed_forms_among(CompiledCatalogueSystems<double>{}) ==
+                      std::tuple_size_v<CompiledCatalogueSystems<double>> &&
+                  closed_forms_among(CatalogueSystems<double>{}) ==
+                      std::tuple_size_v<CompiledCatalogueSystems<double>>,
+              "CompiledCatalogueSystems must be exactly the catalogue systems with a closed-form flow");
+
+template <class T>
+bool compiled_in_scalar(const std::string& system) {
+  if constexpr (!is_mpfr_v<T>) return false;
+  return std::apply([&](auto... compiled) { return ((system == decltype(compiled)::name) || ...); },
+                    CompiledCatalogueSystems<T>{});
+}
+
+// `spec` run in scalar T: formula systems of any dimension in every scalar, the catalogue systems
+// with a closed-form flow compiled in MPFR, every other catalogue system through its formula twin.
 template <class T>
 void run_in_scalar(CaseSpec& spec, CaseResult& result, bool refine,
                    const std::function<void(const std::string&)>& progress) {
@@ -68,9 +94,10 @@ void run_in_scalar(CaseSpec& spec, CaseResult& result, bool refine,
   result.digits = is_mpfr_v<T> ? spec.digits : std::numeric_limits<T>::digits10;
   result.precision_bits = precision_bits<T>();
   std::shared_ptr<const FormulaSystemDefinition> formula = spec.formula;
-  if (!formula && !is_mpfr_v<T>) {
+  if (!formula && !compiled_in_scalar<T>(spec.system)) {
     formula = std::make_shared<const FormulaSystemDefinition>(catalogue_twin(spec.system, spec.parameters));
-    result.implementation = "formula twin of the catalogue system (compiled catalogue systems run in mpfr)";
+    result.implementation =
+        "formula twin of the catalogue system (compiled only in mpfr, and only those with a closed-form flow)";
   } else {
     result.implementation = !formula            ? "compiled catalogue system"
                             : formula->recorded ? "registered C++ system, recorded on a tape"
@@ -96,8 +123,8 @@ void run_in_scalar(CaseSpec& spec, CaseResult& result, bool refine,
   if constexpr (is_mpfr_v<T>) {
     std::vector<std::string> parameters;
     for (const auto& [name, value] : spec.parameters) parameters.push_back(value);
-    visit_system<T>(spec.system, parameters,
-                    [&](const auto& system) { run_on_system(system, spec, result, refine, progress); });
+    visit_system<T, CompiledCatalogueSystems<T>>(
+        spec.system, parameters, [&](const auto& system) { run_on_system(system, spec, result, refine, progress); });
   }
 }
 

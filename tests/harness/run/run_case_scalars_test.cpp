@@ -96,7 +96,9 @@ TEST_P(RunCaseScalarTest, StructureClaimsRunAndHoldOnKepler) {
   for (const auto& claim : result.claims) EXPECT_EQ(claim.verdict, "pass") << scalar << ": " << claim.id << ": " << claim.explanation;
 }
 
-// A catalogue system outside MPFR runs through its formula twin, and says so.
+// A catalogue system with a closed-form flow runs compiled in MPFR, whose reference is that closed
+// form; outside MPFR, and in MPFR for every other catalogue system, it runs through its formula
+// twin. Each says how it ran.
 TEST_P(RunCaseScalarTest, ACatalogueSystemSaysHowItRan) {
   const std::string scalar = GetParam();
   CaseResult result =
@@ -104,9 +106,17 @@ TEST_P(RunCaseScalarTest, ACatalogueSystemSaysHowItRan) {
   EXPECT_EQ(result.claims.at(0).verdict, "pass") << result.claims.at(0).explanation;
   if (scalar == "mpfr") {
     EXPECT_EQ(result.implementation, "compiled catalogue system");
+    EXPECT_NE(result.reference_method.find("closed form"), std::string::npos) << result.reference_method;
   } else {
     EXPECT_NE(result.implementation.find("formula twin"), std::string::npos);
   }
+  CaseResult twin =
+      run_case(case_in(scalar, {{"name", "henon_heiles"}}, {{"kind", "midpoint"}}, {"global-order"},
+                       {{"initial", {{"q", {"0.1", "0.2"}}, {"w", {"0.3", "0"}}}}}),
+               std::nullopt, false, {});
+  EXPECT_EQ(twin.claims.at(0).verdict, "pass") << twin.claims.at(0).explanation;
+  EXPECT_NE(twin.implementation.find("formula twin"), std::string::npos) << twin.implementation;
+  EXPECT_EQ(twin.reference_method.find("closed form"), std::string::npos) << twin.reference_method;
 }
 
 INSTANTIATE_TEST_SUITE_P(Scalars, RunCaseScalarTest, ::testing::Values("double", "long double", "float128", "mpfr"),
