@@ -62,7 +62,7 @@ namespace {
 
 // The catalogue systems compiled in MPFR: those whose reference is a closed-form flow
 // (references/reference_flow.hpp), which their formula twins would lose. Each compiled system
-// costs about a seventh of its MPFR unit's build (docs/build.md); every other catalogue system
+// costs 14 to 26 s of CPU in its MPFR unit's build (docs/build.md); every other catalogue system
 // runs through its formula twin, in MPFR as in the other scalars. harness/CMakeLists.txt
 // instantiates run_on_system for exactly these.
 template <class T>
