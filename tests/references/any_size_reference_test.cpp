@@ -13,7 +13,7 @@
 
 #include "cases/formula_parser.hpp"
 #include "core/formulas/formula_system.hpp"
-#include "core/maps/odeint_map_impl.hpp"
+#include "core/maps/odeint_map.hpp"
 #include "references/taylor_reference.hpp"
 #include "tests/chain_formula.hpp"
 #include "tests/test_scalars.hpp"

@@ -4,7 +4,9 @@
 // JᵀΩJ = Ω to working precision and the classical Runge–Kutta method does not (the negative
 // control), the check symplecticity runs tells a stepper's Jacobian from that of a step of h/2,
 // and a Lagrangian that is not ½ wᵀMw − V(q) is refused.
-#include "core/maps/odeint_map.hpp"
+// The definitions, not only the declaration: the library instantiates odeint's maps of 2
+// coordinates in MPFR alone (harness/CMakeLists.txt), and this test runs them in double and float128.
+#include "core/maps/odeint_map_impl.hpp"
 
 #include "core/qxq/del_evolution.hpp"
 #include "core/structure/symplectic.hpp"
