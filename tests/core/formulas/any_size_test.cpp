@@ -4,7 +4,7 @@
 //             double, the run-time path gives the compile-time path's numbers (values,
 //             derivatives, discrete Legendre transforms and their Hessian blocks, a DEL step, the
 //             Euler–Lagrange acceleration, and in MPFR an odeint step and its Jacobian), to a few
-//             ulps. Each scalar costs about 30 s of this file's compile time at -O0 (docs/build.md);
+//             ulps. Each scalar costs 30 to 40 s of this file's compile time at -O0 (docs/build.md);
 //             long double and float128 take double's code path and are checked at run-time size
 //             below;
 //   n = 7:    every derivative against central differences of values, and a DEL step solved;
