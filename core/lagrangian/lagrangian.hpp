@@ -21,7 +21,7 @@ namespace vivv {
 // The evaluations of L in this thread, counted by every system vivv runs (the catalogue's and
 // formula systems): a run's cost that does not depend on the machine (its work-precision
 // diagram). Counting is one increment per evaluation, in any scalar or jet; a system sized at run
-// time counts each run of L's derivative tape (SparselyDifferentiated below), as one evaluation.
+// time counts each run of L's derivative tape as one evaluation (lagrangian_tape below).
 inline thread_local long lagrangian_evaluations = 0;
 inline void count_lagrangian_evaluation() { ++lagrangian_evaluations; }
 
@@ -105,6 +105,16 @@ concept SparselyDifferentiated =
       { *system.derivatives } -> std::convertible_to<const SecondDerivativeTape<typename System::Scalar>&>;
     };
 
+// L's value, gradient and, with `hessian`, the entries of its sparse Hessian at x = (q, w) (2n
+// numbers) from such a system's tape: one evaluation of L, counted as the dense path counts one.
+// Every reader of L's tape goes through here, so that none forgets the count.
+template <SparselyDifferentiated System>
+EdgePushed<typename System::Scalar> lagrangian_tape(const System& system, const typename System::Scalar* x,
+                                                    bool hessian = true) {
+  count_lagrangian_evaluation();
+  return hessian ? system.derivatives->evaluate(x) : system.derivatives->evaluate_gradient(x);
+}
+
 // L's value and gradient over (q, w) from such a system's tape.
 template <SparselyDifferentiated System>
 EdgePushed<typename System::Scalar> sparse_gradient(const System& system, const VectorOf<System>& q,
@@ -112,8 +122,7 @@ EdgePushed<typename System::Scalar> sparse_gradient(const System& system, const 
   const int n = static_cast<int>(q.size());
   std::vector<typename System::Scalar> x(2 * n);
   for (int i = 0; i < n; ++i) x[i] = q[i], x[n + i] = w[i];
-  count_lagrangian_evaluation();
-  return system.derivatives->evaluate_gradient(x.data());
+  return lagrangian_tape(system, x.data(), false);
 }
 
 // Thrown when d²L/dw² is singular at a state the computation visits.
@@ -144,8 +153,7 @@ auto lagrangian_derivatives(const System& system,
     if (system.derivatives) {
       std::vector<T> x(2 * n);
       for (int i = 0; i < n; ++i) x[i] = q[i], x[n + i] = w[i];
-      count_lagrangian_evaluation();
-      const EdgePushed<T> L = system.derivatives->evaluate(x.data());
+      const EdgePushed<T> L = lagrangian_tape(system, x.data());
       LagrangianDerivatives<T, N> d(n);
       d.d2L_dw2.setZero(), d.d2L_dwdq.setZero();
       d.value = L.value;
@@ -244,8 +252,7 @@ auto sparse_euler_lagrange_acceleration(const System& system, const VectorOf<Sys
   const int n = static_cast<int>(q.size());
   std::vector<T> x(2 * n);
   for (int i = 0; i < n; ++i) x[i] = q[i], x[n + i] = w[i];
-  count_lagrangian_evaluation();
-  const EdgePushed<T> L = system.derivatives->evaluate(x.data());
+  const EdgePushed<T> L = lagrangian_tape(system, x.data());
   if (!isfinite(L.value))
     throw SingularLagrangianError("L(q, w) is not finite at q = " + to_decimal<T>(q[0]) + ", w = " +
                                   to_decimal<T>(w[0]) + ": the state is outside the Lagrangian's domain");

@@ -83,8 +83,7 @@ SparseDiscreteDerivatives<typename System::Scalar> sparse_discrete_derivatives(
     for (int i = 0; i < n; ++i) x[n + i] = (q_e[i] - q_b[i]) / h;
     for (const auto& [weight, fraction] : points) {
       for (int i = 0; i < n; ++i) x[i] = (1 - fraction) * q_b[i] + fraction * q_e[i];
-      count_lagrangian_evaluation();  // one evaluation of L per point, as the dense path counts
-      const EdgePushed<T> L = second_derivatives ? tape.evaluate(x.data()) : tape.evaluate_gradient(x.data());
+      const EdgePushed<T> L = lagrangian_tape(system, x.data(), second_derivatives);
       d.value += h * weight * L.value;
       for (int i = 0; i < n; ++i) {
         d.gradient[i] += weight * (h * (1 - fraction) * L.gradient[i] - L.gradient[n + i]);

@@ -30,8 +30,7 @@ auto velocity_for_momentum(const System& system, const VectorOf<System>& q,
           guess,
           [&](const Vector<T, N>& w, Vector<T, N>& residual, Eigen::SparseMatrix<T>& jacobian) {
             for (int i = 0; i < n; ++i) x[n + i] = w[i];
-            count_lagrangian_evaluation();
-            const EdgePushed<T> L = system.derivatives->evaluate(x.data());
+            const EdgePushed<T> L = lagrangian_tape(system, x.data());
             std::vector<Eigen::Triplet<T>> mass;
             for (std::size_t e = 0; e < L.hessian.size(); ++e) {
               const auto [r, c] = system.derivatives->pattern[e];

@@ -80,9 +80,12 @@ static_assert(closed_forms_among(CompiledCatalogueSystems<double>{}) ==
 
 template <class T>
 bool compiled_in_scalar(const std::string& system) {
-  if constexpr (!is_mpfr_v<T>) return false;
-  return std::apply([&](auto... compiled) { return ((system == decltype(compiled)::name) || ...); },
-                    CompiledCatalogueSystems<T>{});
+  if constexpr (!is_mpfr_v<T>) {
+    return false;
+  } else {
+    return std::apply([&](auto... compiled) { return ((system == decltype(compiled)::name) || ...); },
+                      CompiledCatalogueSystems<T>{});
+  }
 }
 
 // `spec` run in scalar T: formula systems of any dimension in every scalar, the catalogue systems
