@@ -128,16 +128,10 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
 
   State<T, N> step(const State<T, N>& x, const T& h) const override {
     const nlohmann::json answer = process_->request(state_request(x, h));
+    const std::vector<T> y = answer_state<T>(*process_, answer, digits_, h);
     State<T, N> next{Vector<T, N>(n), Vector<T, N>(n)};
     Vector<T, N> p_next(n);
-    for (int i = 0; i < n; ++i) {
-      next.q[i] = answer_number<T>(*process_, answer, "q", i, n, digits_);
-      p_next[i] = answer_number<T>(*process_, answer, "p", i, n, digits_);
-    }
-    for (int i = 0; i < n; ++i) {
-      require_within_scale(*process_, next.q[i], "q", i, h);
-      require_within_scale(*process_, p_next[i], "p", i, h);
-    }
+    for (int i = 0; i < n; ++i) next.q[i] = y[i], p_next[i] = y[n + i];
     next.w = velocity_for_momentum(system_, next.q, p_next, x.w);
     last_ = {next, p_next};
     count_evaluations(answer);
@@ -295,13 +289,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
         for (int i = 0; i < 2 * n; ++i)
           request[i < n ? "q" : "p"].push_back(
               i == j ? to_decimal<R>(side == 0 ? R(yj + delta) : R(yj - delta)) : y[i]);
-        const nlohmann::json answer = process.request(request);
-        for (int i = 0; i < n; ++i) {
-          images[side][i] = answer_number<R>(process, answer, "q", i, n, digits);
-          images[side][n + i] = answer_number<R>(process, answer, "p", i, n, digits);
-          require_within_scale(process, images[side][i], "q", i, h);
-          require_within_scale(process, images[side][n + i], "p", i, h);
-        }
+        images[side] = answer_state<R>(process, process.request(request), digits, h);
       }
       for (int i = 0; i < 2 * n; ++i) result[j][i] = (images[0][i] - images[1][i]) / (2 * delta);
     }
@@ -443,15 +431,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     const auto image = [&](const std::vector<R>& at) {
       nlohmann::json request = {{"h", step}, {"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
       for (int i = 0; i < 2 * n; ++i) request[i < n ? "q" : "p"].push_back(to_decimal<R>(at[i]));
-      const nlohmann::json answer = process_->request(request);
-      std::vector<R> out(2 * n);
-      for (int i = 0; i < n; ++i) {
-        out[i] = answer_number<R>(*process_, answer, "q", i, n, digits_);
-        out[n + i] = answer_number<R>(*process_, answer, "p", i, n, digits_);
-        require_within_scale(*process_, out[i], "q", i, h);
-        require_within_scale(*process_, out[n + i], "p", i, h);
-      }
-      return out;
+      return answer_state<R>(*process_, process_->request(request), digits_, h);
     };
     std::vector<R> centre(2 * n);
     for (int j = 0; j < 2 * n; ++j) centre[j] = from_decimal<R>(y[j]);
@@ -525,6 +505,22 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
                           to_decimal<T>(orbit_size_, 3) +
                           " (max |q_i|, |p_i| of its states at t = 0 and T)",
                       shortest(h));
+  }
+
+  // The answer's (q_1 … q_n, p_1 … p_n) in S, read with `digits` digits (answer_fields.hpp), then
+  // each checked within the orbit's scale: what every reading of a state from a program does.
+  template <class S>
+  std::vector<S> answer_state(const MapProcess& process, const nlohmann::json& answer, int digits, const T& h) const {
+    std::vector<S> y(2 * n);
+    for (int i = 0; i < n; ++i) {
+      y[i] = answer_number<S>(process, answer, "q", i, n, digits);
+      y[n + i] = answer_number<S>(process, answer, "p", i, n, digits);
+    }
+    for (int i = 0; i < n; ++i) {
+      require_within_scale(process, y[i], "q", i, h);
+      require_within_scale(process, y[n + i], "p", i, h);
+    }
+    return y;
   }
 
   // p = FL(q, w), taken from the program's last answer when x is the state it gave (a run's next
