@@ -9,19 +9,11 @@
 namespace vivv {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-// x with `digits` significant digits: "0.62", "1.98", "1e+06".
-std::string format_number(long double x, int digits = 3) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*Lg", digits, x);
-  return buffer;
-}
 
 // e = exp(log_e) written as "1.2e-61", even where e itself is outside the range of long double.
 std::string format_from_log(long double log_e) {
-  if (!std::isfinite(log_e)) return format_number(std::exp(log_e), 2);
+  if (!std::isfinite(log_e)) return format_digits(std::exp(log_e), 2);
   const long double decimal = log_e / std::log(10.0L);
   long double exponent = std::floor(decimal);
   long double mantissa = std::pow(10.0L, decimal - exponent);
@@ -29,8 +21,8 @@ std::string format_from_log(long double log_e) {
     mantissa /= 10;
     exponent += 1;
   }
-  return format_number(mantissa, 2) + "e" + (exponent < 0 ? "-" : "+") +
-         format_number(std::fabs(exponent), 6);
+  return format_digits(mantissa, 2) + "e" + (exponent < 0 ? "-" : "+") +
+         format_digits(std::fabs(exponent), 6);
 }
 
 std::vector<double> pairwise_orders_of(const std::vector<LogPoint>& points) {
@@ -83,6 +75,12 @@ std::vector<double> pairwise_slopes(const std::vector<long double>& x,
   return slopes;
 }
 
+std::string format_digits(long double x, int digits) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*Lg", digits, x);
+  return buffer;
+}
+
 double median_of_finite(std::vector<double> values) {
   std::erase_if(values, [](double v) { return !std::isfinite(v); });
   if (values.empty()) return kNaN;
@@ -108,14 +106,14 @@ void drop_plateau(std::vector<LogPoint>& kept, std::vector<DroppedPoint>& droppe
         last < options.plateau_fraction * rest && rest >= options.plateau_minimum_order;
     if (!plateau) return;
     const std::string numbers =
-        "pairwise order " + format_number(last) + " vs " + format_number(rest) + " on the rest";
+        "pairwise order " + format_digits(last) + " vs " + format_digits(rest) + " on the rest";
     // A plateau is flat: an error above the floor that still falls like a power of h (at order
     // plateau_minimum_order or more) is a lower-order term showing, the defect's signature, not
     // round-off. Yoshida's composition with one weight written to 6 digits fell like h¹ above the
     // floor, and the rule once dropped those points and quoted the orders before them.
     if (last >= options.plateau_minimum_order) {
       notes.push_back("at the small-h end the error still falls, at pairwise order " +
-                      format_number(last) + " (vs " + format_number(rest) + " on the rest) with error " +
+                      format_digits(last) + " (vs " + format_digits(rest) + " on the rest) with error " +
                       format_from_log(kept.back().log_error) +
                       " above the floor: kept in the fit, as a lower-order term rather than a plateau");
       return;
@@ -123,7 +121,7 @@ void drop_plateau(std::vector<LogPoint>& kept, std::vector<DroppedPoint>& droppe
     if (!kept.back().near_floor) {
       notes.push_back("plateau at the small-h end (" + numbers + ") with error " +
                       format_from_log(kept.back().log_error) + ", more than " +
-                      format_number(options.plateau_floor_factor) +
+                      format_digits(options.plateau_floor_factor) +
                       " times the floor: kept in the fit, as a failure to converge rather than "
                       "round-off");
       return;
@@ -148,8 +146,8 @@ void drop_pre_asymptotic(std::vector<LogPoint>& kept, std::vector<DroppedPoint>&
     const double rest = median_of_finite(std::vector<double>(orders.begin() + 1, orders.end()));
     if (!(std::fabs(first - rest) > options.asymptotic_tolerance)) break;
     dropped.emplace_back(kept.front().index, "pre-asymptotic (pairwise order " +
-                                                 format_number(first) + " vs " +
-                                                 format_number(rest) + " on the rest)");
+                                                 format_digits(first) + " vs " +
+                                                 format_digits(rest) + " on the rest)");
     kept.erase(kept.begin());
   }
   if (!(options.asymptote_tolerance > 0)) return;
@@ -158,7 +156,7 @@ void drop_pre_asymptotic(std::vector<LogPoint>& kept, std::vector<DroppedPoint>&
     const double first = orders.front(), finest = orders.back();
     if (!(std::fabs(first - finest) > options.asymptote_tolerance)) return;
     dropped.emplace_back(kept.front().index, "pre-asymptotic in the refined sweep (pairwise order " +
-                                                 format_number(first) + " vs " + format_number(finest) +
+                                                 format_digits(first) + " vs " + format_digits(finest) +
                                                  " at the finest h)");
     kept.erase(kept.begin());
   }

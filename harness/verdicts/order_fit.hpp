@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -152,6 +153,12 @@ std::vector<double> pairwise_slopes(const std::vector<long double>& x,
 
 // The median of the finite values (NaN if there are none).
 double median_of_finite(std::vector<double> values);
+
+// The fit's mark of "undefined" (a slope of one point, the order of no fit).
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// x with `digits` significant digits, for the verdicts' sentences: "0.62", "1.98", "1e+06".
+std::string format_digits(long double x, int digits = 3);
 
 // t with P(|t_ν| <= t) = confidence for Student's t distribution with ν degrees of freedom.
 double students_t_two_sided(double confidence, int degrees_of_freedom);

@@ -11,16 +11,6 @@
 namespace vivv {
 namespace {
 
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// x with `digits` significant digits: "0.62", "1.98", "1e+06".
-std::string format_number(long double x, int digits = 3) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*Lg", digits, x);
-  return buffer;
-}
-
 // A sweep not yet asymptotic, as opposed to one that refutes the prediction: the pairwise orders
 // from the largest h down to the finest point the fit used (the leading points it dropped as
 // pre-asymptotic included, none left out at the floor) still move toward the prediction p, the
@@ -233,7 +223,7 @@ std::optional<Rise> accelerating_toward(const OrderFit& fit, double predicted, b
 
 std::string listed_orders(const std::vector<double>& orders) {
   std::string text;
-  for (double p : orders) text += (text.empty() ? "" : ", ") + format_number(p, 3);
+  for (double p : orders) text += (text.empty() ? "" : ", ") + format_digits(p, 3);
   return text;
 }
 
@@ -244,31 +234,31 @@ OrderVerdict judge_order_rules(const OrderFit& fit, double predicted, bool exact
     verdict.explanation = "no observed order (" + fit.reason + "): fails";
     return verdict;
   }
-  const std::string interval = "[" + format_number(fit.confidence_low, 4) + ", " +
-                               format_number(fit.confidence_high, 4) + "]";
-  const std::string observed = "observed order " + format_number(fit.order, 4) + " (" +
-                               format_number(100 * fit.confidence, 3) + "% interval " + interval +
+  const std::string interval = "[" + format_digits(fit.confidence_low, 4) + ", " +
+                               format_digits(fit.confidence_high, 4) + "]";
+  const std::string observed = "observed order " + format_digits(fit.order, 4) + " (" +
+                               format_digits(100 * fit.confidence, 3) + "% interval " + interval +
                                " from " + std::to_string(fit.used.size()) + " points)";
   const std::string bound =
-      format_number(predicted, 4) + (exact ? " ± " : " − ") + format_number(tolerance, 3);
+      format_digits(predicted, 4) + (exact ? " ± " : " − ") + format_digits(tolerance, 3);
   const bool fit_agrees = order_agrees(fit.order, predicted, exact, tolerance);
   std::string finest_text;
   bool finest_agree = true;
   for (double p : fit.finest_orders) {
-    finest_text += (finest_text.empty() ? "" : ", ") + format_number(p, 3);
+    finest_text += (finest_text.empty() ? "" : ", ") + format_digits(p, 3);
     finest_agree = finest_agree && std::isfinite(p) && order_agrees(p, predicted, exact, tolerance);
   }
   const std::string finest = "finest pairwise order" + std::string(fit.finest_orders.size() > 1 ? "s " : " ") +
                              finest_text;
   const std::string relation = exact ? "within " : ">= ";
   const double half_width = (fit.confidence_high - fit.confidence_low) / 2;
-  verdict.detection_limit = (exact ? "orders outside " + format_number(predicted - tolerance, 4) +
-                                         " … " + format_number(predicted + tolerance, 4)
-                                   : "orders below " + format_number(predicted - tolerance, 4)) +
+  verdict.detection_limit = (exact ? "orders outside " + format_digits(predicted - tolerance, 4) +
+                                         " … " + format_digits(predicted + tolerance, 4)
+                                   : "orders below " + format_digits(predicted - tolerance, 4)) +
                             " fail; the fit resolves the order to " +
-                            (std::isfinite(half_width) ? "±" + format_number(half_width, 2)
+                            (std::isfinite(half_width) ? "±" + format_digits(half_width, 2)
                                                        : std::string("no interval (2 points)")) +
-                            " at " + format_number(100 * fit.confidence, 3) + "%";
+                            " at " + format_digits(100 * fit.confidence, 3) + "%";
   // A note only where it changes what the reader should do: on a pass whose interval excludes
   // the exact order while the finest pairwise orders have not yet settled on it (within tol/4,
   // --refine's own stop rule); once they have, --refine would stop at once and the note would
@@ -278,15 +268,15 @@ OrderVerdict judge_order_rules(const OrderFit& fit, double predicted, bool exact
   const std::string excluded_note =
       exact && !settled && std::isfinite(fit.confidence_low) &&
               (predicted < fit.confidence_low || predicted > fit.confidence_high)
-          ? "; note: the fit's " + format_number(100 * fit.confidence, 3) +
-                "% interval excludes the predicted " + format_number(predicted, 4) +
+          ? "; note: the fit's " + format_digits(100 * fit.confidence, 3) +
+                "% interval excludes the predicted " + format_digits(predicted, 4) +
                 " (the sweep is not fully asymptotic: --refine extends it)"
           : std::string();
   if (!(fit_agrees && finest_agree)) {
     if (const auto approach = approach_to(fit, predicted, tolerance)) {
       std::string orders;
       for (double p : approach->orders)
-        orders += (orders.empty() ? "" : ", ") + format_number(p, 3);
+        orders += (orders.empty() ? "" : ", ") + format_digits(p, 3);
       verdict.inconclusive = true;
       verdict.to_decide =
           "the sweep extended to smaller h (--refine) until the finest pairwise orders reach " +
@@ -297,8 +287,8 @@ OrderVerdict judge_order_rules(const OrderFit& fit, double predicted, bool exact
                       : (finest_agree ? " not " + relation + bound + " (the " + finest + " are)"
                                       : " and " + finest + " not " + relation + bound)) +
           "; the pairwise orders " + orders + " (largest h first) still approach " +
-          format_number(predicted, 4) + ", the last change " + format_number(approach->ratio, 2) +
-          " times the one before, toward " + format_number(approach->limit, 3) +
+          format_digits(predicted, 4) + ", the last change " + format_digits(approach->ratio, 2) +
+          " times the one before, toward " + format_digits(approach->limit, 3) +
           ": the sweep is not yet asymptotic, and does not refute the prediction; to decide: " +
           verdict.to_decide;
       return verdict;
@@ -310,14 +300,14 @@ OrderVerdict judge_order_rules(const OrderFit& fit, double predicted, bool exact
           observed +
           (fit_agrees ? " " + relation + bound + ", but not the " + finest
                       : " not " + relation + bound + " (the finest pairwise order " +
-                            format_number(rising->orders.back(), 3) + " is)") +
+                            format_digits(rising->orders.back(), 3) + " is)") +
           "; the pairwise orders " +
           listed_orders(rising->orders) + " (largest h first" +
           (rising->before.empty() ? std::string()
                                   : "; after " + listed_orders(rising->before) +
                                         " at the largest h, an early start not yet asymptotic") +
           ")" +
-          " rise toward " + format_number(predicted, 4) +
+          " rise toward " + format_digits(predicted, 4) +
           ", each rise smaller than the one before: a short sweep not yet asymptotic, which does "
           "not refute the prediction; to decide: " +
           verdict.to_decide;
@@ -334,10 +324,10 @@ OrderVerdict judge_order_rules(const OrderFit& fit, double predicted, bool exact
                       : " and " + finest + " not " + relation + bound) +
           "; the pairwise orders " + listed_orders(rising->orders) +
           " (largest h first) rise, each rise at least the one before, past " +
-          format_number(predicted - 1 + tolerance, 4) +
+          format_digits(predicted - 1 + tolerance, 4) +
           ": a sweep still leaving the range where the error is as large as the motion (its "
           "slope turning from 0 toward the order), not a lower-order term, whose orders stay "
-          "under " + format_number(predicted - 1, 4) + " when they rise; it does not refute the "
+          "under " + format_digits(predicted - 1, 4) + " when they rise; it does not refute the "
           "prediction; to decide: " + verdict.to_decide;
       return verdict;
     }
@@ -356,7 +346,7 @@ OrderVerdict judge_order_rules(const OrderFit& fit, double predicted, bool exact
         verdict.to_decide = "the sweep extended to smaller h (--refine) past the dip";
         verdict.explanation =
             observed + " " + relation + bound + ", but the " + finest + " lie on either side of " +
-            format_number(predicted, 4) +
+            format_digits(predicted, 4) +
             ": the error dips between them (a component changing sign), not yet a "
             "power law at the small-h end, and does not refute the prediction; to decide: " +
             verdict.to_decide;
@@ -420,11 +410,11 @@ OrderVerdict judge_order_rules(const OrderFit& fit, double predicted, bool exact
       verdict.explanation =
           observed + " " + relation + bound + ", and so " +
           (fit.finest_orders.size() > 1 ? "are the " : "is the ") + finest + ", but the pairwise orders " +
-          listed_orders(recession->orders) + " (largest h first) still fall toward " + format_number(predicted, 4) +
+          listed_orders(recession->orders) + " (largest h first) still fall toward " + format_digits(predicted, 4) +
           ", their distance to it shrinking faster than their changes, by " +
-          format_number(std::fabs(recession->change), 2) +
+          format_digits(std::fabs(recession->change), 2) +
           " at the finest step: an approach from above, or a lower-order term about to cross " +
-          format_number(predicted, 4) +
+          format_digits(predicted, 4) +
           " — the orders so far cannot tell them apart, and a pass would hide the second; to decide: " +
           verdict.to_decide;
       return verdict;
@@ -434,9 +424,9 @@ OrderVerdict judge_order_rules(const OrderFit& fit, double predicted, bool exact
         (fit.finest_orders.size() > 1 ? "are the " : "is the ") + finest + ", but the pairwise orders " +
         listed_orders(recession->orders) + " (largest h first) move " +
         ((predicted - recession->orders.back()) * recession->change > 0 ? "toward " : "away from ") +
-        format_number(predicted, 4) + (recession->change < 0 ? ", falling by " : ", rising by ") +
-        format_number(std::fabs(recession->change), 2) + " at the finest step (more than their noise " +
-        format_number(receding_noise, 2) + ")" +
+        format_digits(predicted, 4) + (recession->change < 0 ? ", falling by " : ", rising by ") +
+        format_digits(std::fabs(recession->change), 2) + " at the finest step (more than their noise " +
+        format_digits(receding_noise, 2) + ")" +
         ((predicted - recession->orders.back()) * recession->change > 0 ? " on a course that ends beyond the tolerance" : "") +
         ": the evidence recedes — a lower-order term whose share grows as h shrinks does this — "
         "and confirms nothing; to decide: " + verdict.to_decide;
@@ -449,13 +439,13 @@ OrderVerdict judge_order_rules(const OrderFit& fit, double predicted, bool exact
     verdict.to_decide =
         "more step sizes in the asymptotic range (--refine, or a sweep extended to smaller h) "
         "until the interval excludes " +
-        format_number(predicted - 1, 4) +
-        (exact ? " and " + format_number(predicted + 1, 4) : std::string());
+        format_digits(predicted - 1, 4) +
+        (exact ? " and " + format_digits(predicted + 1, 4) : std::string());
     verdict.explanation =
         observed + " " + relation + bound + ", and so " +
         (fit.finest_orders.size() > 1 ? "are the " : "is the ") + finest + ", but the interval " +
         (std::isfinite(half_width)
-             ? "contains " + format_number(resolves_lower ? predicted + 1 : predicted - 1, 4)
+             ? "contains " + format_digits(resolves_lower ? predicted + 1 : predicted - 1, 4)
              : std::string("is unbounded with two points")) +
         ": the fit cannot tell the predicted order from its neighbour; to decide: " +
         verdict.to_decide;
@@ -504,9 +494,9 @@ OrderVerdict judge_order(const OrderFit& fit, double predicted, bool exact, doub
   if (!fit.ok) return verdict;
   const double b = lower_order_detection_limit(fit, predicted, exact, tolerance);
   if (std::isfinite(b))
-    verdict.detection_limit += "; a lower-order term b·h_min/h beside h^" + format_number(predicted, 4) +
-                               " (e = C·h^" + format_number(predicted, 4) +
-                               "·(1 + b·h_min/h)) with b >= " + format_number(b, 2) +
+    verdict.detection_limit += "; a lower-order term b·h_min/h beside h^" + format_digits(predicted, 4) +
+                               " (e = C·h^" + format_digits(predicted, 4) +
+                               "·(1 + b·h_min/h)) with b >= " + format_digits(b, 2) +
                                ", its share of the error at the smallest h, would not have passed";
   return verdict;
 }
