@@ -15,16 +15,20 @@ cd "$(dirname "$0")"
 mode=${1:-}
 case "$mode" in run|test|slow|sanitize) ;; *) echo "usage: bash bootstrap.sh run|test|slow|sanitize" >&2; exit 2 ;; esac
 
-# Debian packages vivv builds and tests with (DESIGN §2; nothing else, nothing downloaded).
-packages=(g++ cmake make ninja-build libeigen3-dev libboost-dev libmpfr-dev libgmp-dev nlohmann-json3-dev
-          libgtest-dev libbenchmark-dev python3-jsonschema)
-# Only needed to test: the "browser" tests render report.html in headless Chromium, the
+# Debian packages vivv builds with (nothing else, nothing downloaded): all `run` needs.
+packages=(g++ cmake make ninja-build libeigen3-dev libboost-dev libmpfr-dev libgmp-dev nlohmann-json3-dev)
+# Only needed to test: GoogleTest for the unit tests, python3-jsonschema to check reports against
+# their schema a second way, the "browser" tests render report.html in headless Chromium, the
 # "scale" tests start shards with GNU parallel, the "python" tests run the integrators of
 # examples/python-integrator (mpmath, NumPy) through the process protocol, the package python/
-# under pytest, and its offline installation into a venv (venv, setuptools, wheel).
-if [ "$mode" = test ] || [ "$mode" = slow ]; then
-  packages+=(chromium parallel python3-mpmath python3-numpy python3-pytest python3-venv python3-setuptools
-             python3-wheel)
+# under pytest, and its offline installation into a venv (venv, setuptools, wheel). Google
+# Benchmark only for the slow job, which builds the benchmarks.
+if [ "$mode" != run ]; then
+  packages+=(libgtest-dev python3-jsonschema chromium parallel python3-mpmath python3-numpy python3-pytest
+             python3-venv python3-setuptools python3-wheel)
+fi
+if [ "$mode" = slow ]; then
+  packages+=(libbenchmark-dev)
 fi
 sudo_cmd=""; [ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
 missing=()
@@ -59,7 +63,8 @@ fi
 # Ninja keeps both cores busy to the end of the build (make idles while the last unit of a
 # target compiles); a build/ configured earlier keeps its generator.
 generator=(); [ -f build/CMakeCache.txt ] || generator=(-G Ninja)
-cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE=Release >/dev/null
+tests=ON; [ "$mode" = run ] && tests=OFF  # the run builds the tool alone: no GoogleTest needed
+cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DVIVV_TESTS=$tests >/dev/null
 if [ "$mode" = run ]; then
   # The run needs the tool alone, not the unit tests or the benchmarks.
   cmake --build build -j "$jobs" --target vivv
@@ -67,8 +72,10 @@ if [ "$mode" = run ]; then
 fi
 cmake --build build -j "$jobs"
 if [ "$mode" = slow ]; then
-  # The slow jobs: the tests labelled "slow" (systems of a hundred coordinates and more, minutes
-  # each), then the sanitizer build.
+  # The slow jobs: the benchmarks built (not by the test command: docs/build.md), the tests
+  # labelled "slow" (systems of a hundred coordinates and more, minutes each; `vivv bench`), then
+  # the sanitizer build.
+  cmake --build build -j "$jobs" --target benchmarks
   (cd build && ctest --output-on-failure -j "$jobs" -L slow)
   exec bash tests/sanitize.sh "$PWD" "$PWD/build-sanitize"
 fi

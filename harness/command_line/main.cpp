@@ -64,8 +64,8 @@ int main(int argc, char** argv) {
       std::error_code missing;
       if (!fs::exists(bench, missing))
         return bad_input("vivv bench runs " + bench.string() +
-                         ", which is not built: cmake --build build --target vivv-bench (the test "
-                         "command builds it)");
+                         ", which is not built: cmake --build build --target benchmarks (bash "
+                         "bootstrap.sh slow builds it)");
       std::cout.flush();
       const std::string name = "vivv-bench";
       std::vector<char*> argv{const_cast<char*>(name.c_str()), args[0].data(), nullptr};
