@@ -115,14 +115,21 @@ EdgePushed<typename System::Scalar> lagrangian_tape(const System& system, const 
   return hessian ? system.derivatives->evaluate(x) : system.derivatives->evaluate_gradient(x);
 }
 
+// The same at (q, w) given apart.
+template <SparselyDifferentiated System>
+EdgePushed<typename System::Scalar> lagrangian_tape(const System& system, const VectorOf<System>& q,
+                                                    const VectorOf<System>& w, bool hessian = true) {
+  const int n = static_cast<int>(q.size());
+  std::vector<typename System::Scalar> x(2 * n);
+  for (int i = 0; i < n; ++i) x[i] = q[i], x[n + i] = w[i];
+  return lagrangian_tape(system, x.data(), hessian);
+}
+
 // L's value and gradient over (q, w) from such a system's tape.
 template <SparselyDifferentiated System>
 EdgePushed<typename System::Scalar> sparse_gradient(const System& system, const VectorOf<System>& q,
                                                     const VectorOf<System>& w) {
-  const int n = static_cast<int>(q.size());
-  std::vector<typename System::Scalar> x(2 * n);
-  for (int i = 0; i < n; ++i) x[i] = q[i], x[n + i] = w[i];
-  return lagrangian_tape(system, x.data(), false);
+  return lagrangian_tape(system, q, w, false);
 }
 
 // Thrown when d²L/dw² is singular at a state the computation visits.
@@ -151,9 +158,7 @@ auto lagrangian_derivatives(const System& system,
   const int n = static_cast<int>(q.size());
   if constexpr (SparselyDifferentiated<System>) {
     if (system.derivatives) {
-      std::vector<T> x(2 * n);
-      for (int i = 0; i < n; ++i) x[i] = q[i], x[n + i] = w[i];
-      const EdgePushed<T> L = lagrangian_tape(system, x.data());
+      const EdgePushed<T> L = lagrangian_tape(system, q, w);
       LagrangianDerivatives<T, N> d(n);
       d.d2L_dw2.setZero(), d.d2L_dwdq.setZero();
       d.value = L.value;
@@ -250,9 +255,7 @@ auto sparse_euler_lagrange_acceleration(const System& system, const VectorOf<Sys
   using T = typename System::Scalar;
   using std::isfinite;
   const int n = static_cast<int>(q.size());
-  std::vector<T> x(2 * n);
-  for (int i = 0; i < n; ++i) x[i] = q[i], x[n + i] = w[i];
-  const EdgePushed<T> L = lagrangian_tape(system, x.data());
+  const EdgePushed<T> L = lagrangian_tape(system, q, w);
   if (!isfinite(L.value))
     throw SingularLagrangianError("L(q, w) is not finite at q = " + to_decimal<T>(q[0]) + ", w = " +
                                   to_decimal<T>(w[0]) + ": the state is outside the Lagrangian's domain");
