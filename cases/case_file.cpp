@@ -17,6 +17,7 @@
 #include "core/formulas/formula_system.hpp"
 #include "core/maps/odeint_map.hpp"
 #include "core/maps/user_map.hpp"
+#include "core/platform/text.hpp"
 #include "core/qxq/discrete_lagrangian.hpp"
 
 // The top level of a case file and the checks across its sections; the reader and the longer
@@ -179,8 +180,9 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   }
   if (reader.has("labels")) spec.labels = reader.strings("labels");
   // "comment": the case's own words — where its data come from — for its readers; vivv keeps none of it.
-  if (reader.has("comment") && reader.string("comment").size() > 4000)
-    reader.fail("comment", "expected a text of at most 4000 characters");
+  if (reader.has("comment") && utf8_characters(reader.string("comment")) > 4000)
+    reader.fail("comment", "expected a text of at most 4000 characters, got " +
+                               std::to_string(utf8_characters(reader.string("comment"))));
 
   spec.claims = reader.strings("claims");
   if (spec.claims.empty()) reader.fail("claims", "expected at least one claim");

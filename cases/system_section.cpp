@@ -10,9 +10,61 @@
 #include "cases/formula_parser.hpp"
 #include "cases/lexical_forms.hpp"
 #include "cases/systems.hpp"
+#include "core/formulas/formula_size.hpp"
 #include "core/formulas/formula_system.hpp"
+#include "core/platform/memory_limit.hpp"
 
 namespace vivv::case_reading {
+
+namespace {
+
+// The bytes reading a formula system holds per operation of L, beyond the operations' first-order
+// jets: its tape in long double, the edge-pushing record of its sparse second derivatives and the
+// interpreter's values (measured on all-pairs sums of 50 to 400 particles: docs/case-files.md).
+constexpr double bytes_read_per_operation = 2048;
+
+std::string gib(double bytes) { return three_digits(bytes / (1024.0 * 1024 * 1024)) + " GiB"; }
+
+// L recorded within what reading may spend, before the rest of the system is built from it: the
+// operations its sums expand to as written (core/formulas/formula_size.hpp: its sums' bounds
+// walked, no term expanded) within maximum_formula_operations, a bound on the work of reading;
+// then its tape recorded under a ceiling of operations that the memory this process may take
+// holds — the recording, its sparse second derivatives and the first-order jets (1 + 2n long
+// doubles an operation) that check the initial state. Refused naming the estimate, the limit and
+// the field before the memory is spent. Returns the tape's operations.
+std::size_t record_within_limits(const FormulaSystemDefinition& definition, Reader& system) {
+  const std::size_t n = definition.coordinates.size();
+  double written = 0;
+  if (!definition.recorded) {
+    written = formula_operations(definition.lagrangian, maximum_formula_operations);
+    if (written > maximum_formula_operations)
+      system.fail("lagrangian", "the formula's sums expand to more than " +
+                                    std::to_string(static_cast<long>(maximum_formula_operations)) +
+                                    " operations as written (counted from its sums' bounds, before expanding "
+                                    "them): vivv reads formulas up to that size");
+  }
+  const double per_operation = bytes_read_per_operation + (1 + 2 * static_cast<double>(n)) * sizeof(long double);
+  const MemoryLimit limit = memory_limit();
+  const double ceiling = std::max(64.0, std::floor(limit.bytes / per_operation));
+  try {
+    const TapeCeiling guard(ceiling < 1e15 ? static_cast<std::size_t>(ceiling) : 0);
+    return record_lagrangian<long double>(definition, static_cast<int>(n)).nodes.size();
+  } catch (const TapeCeilingReached& reached) {
+    system.fail("lagrangian", "reading this system needs more than the " + gib(limit.bytes) +
+                                  " this process may take (" + limit.what + "): its L records more than " +
+                                  std::to_string(reached.nodes) + " operations" +
+                                  (written > 0 ? " (about " + std::to_string(static_cast<long>(written)) +
+                                                     " as written, before equal terms are shared)"
+                                               : std::string()) +
+                                  ", each about " + std::to_string(static_cast<long>(per_operation)) +
+                                  " bytes in " + std::to_string(n) +
+                                  " coordinates (its tape, its sparse second derivatives and a first-order jet "
+                                  "of 1 + 2n long doubles): stopped there, before the memory was spent");
+  }
+  return 0;
+}
+
+}  // namespace
 
 // "system": {"name", "lagrangian", "coordinates", "velocities", "params"}: a system as a formula.
 void read_formula_system(Reader& system, CaseSpec& spec) {
@@ -143,6 +195,9 @@ void read_formula_system(Reader& system, CaseSpec& spec) {
           system.fail("symmetry", "expected a key such as \"x[i]\" (a family and the name of its first index) or a "
                                   "coordinate's name, got \"" + echo(key) + "\"");
         index = key.substr(open + 1, key.size() - open - 2);
+        if (is_reserved_formula_name(index))
+          system.fail("symmetry", "the index '" + echo(index) + "' of the key \"" + echo(key) +
+                                      "\" is a reserved name (a function, pi, L or sum): name the index i, j, …");
       }
       given[base] = {index, value};
     }
@@ -213,6 +268,15 @@ void read_formula_system(Reader& system, CaseSpec& spec) {
   }
   // Each component of ξ alone, so that an error names its field: a scalar in the coordinates
   // and parameters (the velocities are unknown names there).
+  for (std::size_t i = 0; i < symmetry_texts.size(); ++i) {
+    try {
+      if (formula_operations(definition->symmetry[i], maximum_formula_operations) > maximum_formula_operations)
+        system.fail(symmetry_fields[i], "the formula expands to more than " +
+                                            std::to_string(maximum_formula_operations) + " operations");
+    } catch (const FormulaError& error) {
+      system.fail(symmetry_fields[i], describe_formula_error(symmetry_texts[i], error));
+    }
+  }
   if (!symmetry_texts.empty()) {
     using V = TapeScalar<long double>;
     TapeRecording<long double> recording(static_cast<int>(n));
@@ -231,10 +295,13 @@ void read_formula_system(Reader& system, CaseSpec& spec) {
     }
   }
   try {
+    record_within_limits(*definition, system);
     switch (n) {
-      case 1: make_formula_system<long double, 1>(*definition); break;
-      case 2: make_formula_system<long double, 2>(*definition); break;
-      default: make_formula_system<long double, any_size>(*definition); break;
+      case 1: definition->operations = make_formula_system<long double, 1>(*definition).program->nodes.size(); break;
+      case 2: definition->operations = make_formula_system<long double, 2>(*definition).program->nodes.size(); break;
+      default:
+        definition->operations = make_formula_system<long double, any_size>(*definition).program->nodes.size();
+        break;
     }
   } catch (const FormulaError& error) {
     system.fail("lagrangian", describe_formula_error(text, error));
@@ -351,7 +418,9 @@ void check_memory(const CaseSpec& spec, const std::string& file, const std::stri
   if (!spec.formula || spec.dimension <= 2) return;
   const double n = spec.dimension;
   const double operations =
-      static_cast<double>(make_formula_system<long double, any_size>(*spec.formula).program->nodes.size());
+      static_cast<double>(spec.formula->operations ? spec.formula->operations
+                                                   : make_formula_system<long double, any_size>(*spec.formula)
+                                                         .program->nodes.size());
   const double number = bytes_per_number(scalar, digits);
   // The largest of what the run holds at once: first-order jets through L's tape; with a dense
   // discretization, second-order jets of 1 + 2n + (2n)² numbers per operation; and for
@@ -374,17 +443,13 @@ void check_memory(const CaseSpec& spec, const std::string& file, const std::stri
              std::to_string(spec.steps.back()) + " steps of the longest run)";
     }
   }
-  const double pages = static_cast<double>(sysconf(_SC_PHYS_PAGES));
-  const double page = static_cast<double>(sysconf(_SC_PAGE_SIZE));
-  const double available = pages > 0 && page > 0 ? pages * page : 0;
-  if (available > 0 && needed > available) {
-    const auto gib = [](double bytes) { return three_digits(bytes / (1024.0 * 1024 * 1024)) + " GiB"; };
+  const MemoryLimit limit = memory_limit();
+  if (needed > limit.bytes)
     throw CaseError(file, "system.coordinates",
                     "a system of " + std::to_string(spec.dimension) + " coordinates whose L takes " +
                         std::to_string(static_cast<long>(operations)) + " operations needs about " + gib(needed) +
-                        " in " + scalar + purpose + " " + what + ", more than this machine's " + gib(available) +
-                        " of memory");
-  }
+                        " in " + scalar + purpose + " " + what + ", more than the " + gib(limit.bytes) +
+                        " this process may take (" + limit.what + ")");
 }
 
 }  // namespace vivv::case_reading

@@ -65,6 +65,31 @@ struct TapeNode {
   int c = -1;
 };
 
+// A recording that passed the ceiling a TapeCeiling set: what is recorded would not fit in memory.
+struct TapeCeilingReached : std::length_error {
+  explicit TapeCeilingReached(std::size_t nodes)
+      : std::length_error("a recording passed its ceiling of " + std::to_string(nodes) + " operations"),
+        nodes(nodes) {}
+  std::size_t nodes;
+};
+
+namespace tape_detail {
+inline thread_local std::size_t node_ceiling = 0;  // 0: none
+}  // namespace tape_detail
+
+// While alive, every recording on this thread holds at most `nodes` nodes (0: no ceiling) and
+// throws TapeCeilingReached instead: a formula is expanded at most as far as memory allows.
+class TapeCeiling {
+ public:
+  explicit TapeCeiling(std::size_t nodes) : previous_(tape_detail::node_ceiling) { tape_detail::node_ceiling = nodes; }
+  ~TapeCeiling() { tape_detail::node_ceiling = previous_; }
+  TapeCeiling(const TapeCeiling&) = delete;
+  TapeCeiling& operator=(const TapeCeiling&) = delete;
+
+ private:
+  std::size_t previous_;
+};
+
 // A straight-line program over `inputs` variables with a list of outputs.
 template <class T>
 struct Tape {
@@ -132,6 +157,8 @@ class TapeRecording {
     auto found = memo_.find(key);
     if (found != memo_.end()) return found->second;
     int index = static_cast<int>(tape_.nodes.size());
+    if (tape_detail::node_ceiling && tape_.nodes.size() + 2 > tape_detail::node_ceiling)
+      throw TapeCeilingReached(tape_detail::node_ceiling);
     if (op == TapeOp::sin || op == TapeOp::cos) {
       // One pair (sin a, cos a) at (index, index + 1), whichever was asked first.
       tape_.nodes.push_back({TapeOp::sin, a, -1, -1});

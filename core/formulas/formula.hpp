@@ -19,6 +19,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "core/numerics/scalar.hpp"
@@ -150,21 +151,31 @@ V apply_function(const std::string& f, const V& x, int position) {
 }  // namespace formula_detail
 
 // The integer an index expression stands for: integers, the indices enclosing sums bind, and
-// + − * of them. FormulaError at the first part that is none of these.
+// + − * of them. FormulaError at the first part that is none of these, and at every operation whose
+// exact result lies beyond ±2^40: checked before it can wrap (2^32 · 2^32 + 1 is not 1).
 template <class T, class V>
 long index_value(const FormulaNode& node, const FormulaScope<T, V>& scope) {
   using Kind = FormulaNode::Kind;
-  constexpr long bound = 1L << 40;  // far beyond any family, and no overflow in + − *
-  const auto checked = [&](long value) {
-    if (value > bound || value < -bound) throw FormulaError(node.position, "an index beyond ±2^40");
+  constexpr long bound = 1L << 40;  // far beyond any family
+  const auto checked = [&](bool overflowed, long value) {
+    if (overflowed || value > bound || value < -bound)
+      throw FormulaError(node.position, "an index or sum bound beyond ±2^40 (1099511627776)");
     return value;
   };
+  const auto operands = [&] {
+    return std::pair{index_value(node.operands[0], scope), index_value(node.operands[1], scope)};
+  };
+  long result = 0;
   switch (node.kind) {
     case Kind::number: {
-      const bool integer = !node.text.empty() && node.text.size() <= 12 &&
+      const bool integer = !node.text.empty() && node.text.size() <= 13 &&
                            node.text.find_first_not_of("0123456789") == std::string::npos;
-      if (!integer) throw FormulaError(node.position, "expected an integer index, got " + node.text);
-      return std::stol(node.text);
+      if (!integer) {
+        if (!node.text.empty() && node.text.find_first_not_of("0123456789") == std::string::npos)
+          checked(true, 0);  // an integer of more digits than any index within ±2^40
+        throw FormulaError(node.position, "expected an integer index, got " + node.text);
+      }
+      return checked(false, std::stol(node.text));
     }
     case Kind::name: {
       const auto found = scope.indices.find(node.text);
@@ -177,10 +188,22 @@ long index_value(const FormulaNode& node, const FormulaScope<T, V>& scope) {
       }
       return found->second;
     }
-    case Kind::negate: return checked(-index_value(node.operands[0], scope));
-    case Kind::add: return checked(index_value(node.operands[0], scope) + index_value(node.operands[1], scope));
-    case Kind::subtract: return checked(index_value(node.operands[0], scope) - index_value(node.operands[1], scope));
-    case Kind::multiply: return checked(index_value(node.operands[0], scope) * index_value(node.operands[1], scope));
+    case Kind::negate: return checked(false, -index_value(node.operands[0], scope));
+    case Kind::add: {
+      const auto [a, b] = operands();
+      const bool overflowed = __builtin_add_overflow(a, b, &result);  // before `result` is read
+      return checked(overflowed, result);
+    }
+    case Kind::subtract: {
+      const auto [a, b] = operands();
+      const bool overflowed = __builtin_sub_overflow(a, b, &result);  // before `result` is read
+      return checked(overflowed, result);
+    }
+    case Kind::multiply: {
+      const auto [a, b] = operands();
+      const bool overflowed = __builtin_mul_overflow(a, b, &result);  // before `result` is read
+      return checked(overflowed, result);
+    }
     default:
       throw FormulaError(node.position, "expected an index: integers, summation indices and + - * of them");
   }
@@ -253,6 +276,9 @@ FormulaValue<V> interpret(const FormulaNode& node, const FormulaScope<T, V>& sco
     }
     case Kind::sum: {
       const long low = index_value(node.operands[0], scope), high = index_value(node.operands[1], scope);
+      if (is_reserved_formula_name(node.text))
+        throw FormulaError(node.position, "the summation index '" + node.text +
+                                              "' is a reserved name (a function, pi, L or sum)");
       if (scope.names.count(node.text) || scope.indices.count(node.text))
         throw FormulaError(node.position, "the summation index '" + node.text +
                                               "' is already a name here (a coordinate, velocity, parameter or "

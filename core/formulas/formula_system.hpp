@@ -38,6 +38,8 @@ struct FormulaSystemDefinition {
   // A system registered as C++ code (core/formulas/recorded.hpp): L is recorded from it, not from
   // `lagrangian`, which is then empty.
   std::shared_ptr<const PerScalar<SystemRecorder>> recorded;
+  // The operations of L's recorded tape, counted when the case was read (0: not yet recorded).
+  std::size_t operations = 0;
 };
 
 // n: the number of coordinates, fixed (1, 2) or any_size (then the definition's, at run time).
@@ -140,26 +142,30 @@ FormulaScope<T, V> system_formula_scope(const FormulaSystemDefinition& definitio
   return scope;
 }
 
+// L of `definition` (n coordinates) recorded in T: its tape alone, inputs q_1 … q_n, w_1 … w_n.
+// Throws FormulaError for a formula that has no meaning (unknown names, vectors, non-constant
+// exponents), TapeCeilingReached past a TapeCeiling.
+template <class T>
+Tape<T> record_lagrangian(const FormulaSystemDefinition& definition, int n) {
+  TapeRecording<T> recording(2 * n);
+  std::vector<TapeScalar<T>> q, w;
+  for (int i = 0; i < n; ++i) q.push_back(recording.input(i)), w.push_back(recording.input(n + i));
+  if (definition.recorded)
+    return recording.finish({definition.recorded->template get<T>()(q, w, definition.parameters)});
+  const auto scope = system_formula_scope<T>(definition, q, w);
+  return recording.finish({interpret(definition.lagrangian, scope).components[0]});
+}
+
 // Records the formula of `definition` (dimension n) in T. Throws FormulaError for
 // a formula that has no meaning (unknown names, vectors, non-constant exponents).
 template <class T, int N>
 FormulaSystem<T, N> make_formula_system(const FormulaSystemDefinition& definition) {
   const int n = N == any_size ? static_cast<int>(definition.coordinates.size()) : N;
-  TapeRecording<T> recording(2 * n);
-  std::vector<TapeScalar<T>> q, w;
-  for (int i = 0; i < n; ++i) q.push_back(recording.input(i)), w.push_back(recording.input(n + i));
   FormulaSystem<T, N> system;
   system.coordinates = n;
-  if (definition.recorded) {
-    const TapeScalar<T> value = definition.recorded->template get<T>()(q, w, definition.parameters);
-    system.program = std::make_shared<const Tape<T>>(recording.finish({value}));
-    if constexpr (N == any_size) system.derivatives = std::make_shared<const SecondDerivativeTape<T>>(*system.program);
-    return system;
-  }
-  const auto scope = system_formula_scope<T>(definition, q, w);
-  const FormulaValue<TapeScalar<T>> value = interpret(definition.lagrangian, scope);
-  system.program = std::make_shared<const Tape<T>>(recording.finish({value.components[0]}));
+  system.program = std::make_shared<const Tape<T>>(record_lagrangian<T>(definition, n));
   if constexpr (N == any_size) system.derivatives = std::make_shared<const SecondDerivativeTape<T>>(*system.program);
+  if (definition.recorded) return system;
   if (!definition.symmetry.empty()) {
     TapeRecording<T> generator(n);
     std::vector<TapeScalar<T>> x;

@@ -36,6 +36,13 @@ inline std::size_t utf8_sequence_length(std::string_view text, std::size_t at) {
   return length;
 }
 
+// The characters of UTF-8 `text`: its bytes but the continuation bytes (10xxxxxx).
+inline std::size_t utf8_characters(std::string_view text) {
+  std::size_t count = 0;
+  for (const char c : text) count += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+  return count;
+}
+
 // `text` with every byte that does not belong to a well-formed UTF-8 character replaced by
 // U+FFFD; valid text comes back unchanged.
 inline std::string repaired_utf8(std::string_view text) {

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <iosfwd>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -96,6 +97,12 @@ int run_help(std::ostream& out);
 // {"refused": message} (each case then runs in a worker process, so that a --max-seconds budget
 // that ends it leaves the others).
 std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const RunOptions& options);
+
+// `check(spec)` (reading a case file and checking it against the options) under the --max-seconds
+// budget of a case: expanding a formula is work the budget covers. Past it, vivv ends with exit 2
+// naming the file and the phase, and writes no report.
+CaseSpec within_reading_budget(const std::string& file, const RunOptions& options,
+                               const std::function<CaseSpec()>& read);
 
 // Before any work: DIR must be a directory vivv can create and write in.
 void check_output_directory(const std::string& out);

@@ -146,7 +146,7 @@ int command_run(const std::vector<std::string>& args, const std::string& command
   std::vector<CaseSpec> specs;
   std::map<std::string, std::string> names;
   for (const auto& file : options.case_files) {
-    specs.push_back(read_case_file(file));
+    specs.push_back(within_reading_budget(file, options, [&file] { return read_case_file(file); }));
     auto [it, fresh] = names.emplace(specs.back().name, file);
     if (!fresh)
       throw CaseError(file, "name", "'" + specs.back().name + "' is also the name of " + it->second);
@@ -163,7 +163,11 @@ int command_run(const std::vector<std::string>& args, const std::string& command
     }
   }
   // The options against every case before any computes: a case they cannot run refuses the run.
-  for (const auto& spec : specs) check_precision_options(spec, options.scalar, options.digits);
+  for (const auto& spec : specs)
+    within_reading_budget(spec.file, options, [&] {
+      check_precision_options(spec, options.scalar, options.digits);
+      return CaseSpec{};
+    });
   const nlohmann::json skipped = select_claims(specs, options.claims);
   for (auto& spec : specs)
     permit_process(spec, options.allow_process, options.process_timeout,

@@ -202,6 +202,32 @@ nlohmann::json run_one(const CaseSpec& spec, const RunOptions& options) {
   }
 }
 
+}  // namespace
+
+CaseSpec within_reading_budget(const std::string& file, const RunOptions& options,
+                               const std::function<CaseSpec()>& read) {
+  if (!options.max_seconds) return read();
+  budget_seconds = *options.max_seconds;
+  const bool keeps_going = budget_keeps_going;
+  budget_keeps_going = false;  // a case file not read refuses the whole run, --keep-going or not
+  note_phase(file, "reading the case");
+  signal(SIGALRM, budget_exhausted);
+  alarm(static_cast<unsigned>(budget_seconds));
+  CaseSpec spec;
+  try {
+    spec = read();
+  } catch (...) {
+    alarm(0);
+    budget_keeps_going = keeps_going;
+    throw;
+  }
+  alarm(0);
+  budget_keeps_going = keeps_going;
+  return spec;
+}
+
+namespace {
+
 volatile sig_atomic_t interrupted_by = 0;
 extern "C" void note_interrupt(int signal) { interrupted_by = signal; }
 

@@ -48,6 +48,24 @@ std::string listed(const std::vector<int>& indices) {
   return text + "]";
 }
 
+// Every index a series' fit_points name (used, dropped) is one of its errors and its step sizes,
+// whether or not the series was fitted: a baseline's points are read by index (--baseline).
+void check_fit_point_indices(const nlohmann::json& s, const std::string& at, const std::string& edited) {
+  const std::size_t errors = s.value("error", nlohmann::json::array()).size();
+  const std::size_t steps = s.value("h", nlohmann::json::array()).size();
+  for (const char* list : {"used", "dropped"}) {
+    if (!s["fit_points"].contains(list)) continue;
+    for (const auto& entry : s["fit_points"][list]) {
+      const nlohmann::json index = entry.is_object() ? entry.value("index", nlohmann::json()) : entry;
+      const bool inside = index.is_number_integer() && index.get<long long>() >= 0 &&
+                          static_cast<unsigned long long>(index.get<long long>()) < std::min(errors, steps);
+      if (!inside)
+        throw ReportError(at + "." + list + ": index " + index.dump() + " names no point of the series (it has " +
+                          std::to_string(steps) + " step sizes and " + std::to_string(errors) + " errors)" + edited);
+    }
+  }
+}
+
 }  // namespace
 
 void check_series_follow_from_errors(const nlohmann::json& report, const std::string& path,
@@ -104,6 +122,7 @@ void check_series_follow_from_errors(const nlohmann::json& report, const std::st
               where(path, i, k, j, c) +
               ": rule \"order\" without its fit (observed_order, fit_points and predicted_order)" +
               edited);
+        if (s.contains("fit_points")) check_fit_point_indices(s, where(path, i, k, j, c) + ".fit_points", edited);
         if (!fitted) continue;
         if (s.at("h").size() != s.at("error").size())
           throw ReportError(where(path, i, k, j, c) + ": " + std::to_string(s["h"].size()) +

@@ -72,3 +72,57 @@ def test_an_xpass_fails(tmp_path):
     report["cases"][0]["claims"][3]["verdict"] = "xpass"
     output, _ = pytest_in(tmp_path, "-k", "local-order", report=report)
     assert "1 failed" in output and "XPASS(strict)" in output
+
+
+def test_only_the_cases_own_expected_failure_is_an_xfail(tmp_path):
+    # A claim the case marks xfail that vivv judges otherwise — failing for another reason than
+    # the one stated (vivv's "fail"), error or inconclusive — fails, as vivv's exit status does.
+    for verdict in ("fail", "error", "inconclusive"):
+        report = json.loads(json.dumps(REPORT))
+        report["cases"][0]["claims"][3].update(verdict=verdict, explanation="fails otherwise — observed order 1.894")
+        directory = tmp_path / verdict
+        directory.mkdir()
+        output, _ = pytest_in(directory, "-k", "local-order", report=report)
+        assert "1 failed" in output and "xfailed" not in output, (verdict, output)
+        assert f"my-verlet / local-order: {verdict}: fails otherwise" in output
+
+
+def test_a_case_that_could_not_run_fails_its_expected_failures_too(tmp_path):
+    report = json.loads(json.dumps(REPORT))
+    report["cases"] = []
+    report["refused"].append({"name": "my-verlet", "file": "my-verlet.json", "kind": "could-not-run",
+                              "message": "the map program exited 1"})
+    output, _ = pytest_in(tmp_path, "-k", "my-verlet", report=report)
+    assert "4 failed" in output and "xfailed" not in output, output
+
+
+def collected(tmp_path, case):
+    """pytest's output on a directory with the one case file `case` (a JSON value, or text)."""
+    (tmp_path / "cases").mkdir()
+    (tmp_path / "cases" / "odd.json").write_text(case if isinstance(case, str) else json.dumps(case))
+    (tmp_path / "pytest.ini").write_text("[pytest]\nvivv_cases = cases/*.json\n")
+    (tmp_path / "conftest.py").write_text('pytest_plugins = ["vivv_map.pytest_plugin"]\n')
+    environment = dict(os.environ, VIVV="/nonexistent/vivv", PYTHONPATH=str(PYTHON_DIR))
+    result = subprocess.run([sys.executable, "-m", "pytest", "-p", "no:cacheprovider", "-rA"], cwd=tmp_path,
+                            env=environment, capture_output=True, text=True, timeout=120)
+    return result.returncode, result.stdout + result.stderr
+
+
+def test_a_case_vivv_refuses_is_a_collection_error_naming_file_and_field(tmp_path):
+    rows = [({"name": "c", "claims": []}, "field 'claims': expected at least one claim"),
+            ({"name": "c"}, "field 'claims': expected a list of claim names"),
+            ([{"name": "c", "claims": ["global-order"]}], "expected a JSON object (a case), got list"),
+            ({"name": "c", "claims": ["global-order"], "xfail": ["global-order"]}, "field 'xfail': expected an object"),
+            ({"name": "c", "claims": ["global-order"], "xfail": {"global-order": ["why"]}},
+             "field 'xfail.global-order': expected the reason"),
+            ({"name": "c", "claims": ["global-order"], "xfail": {"symplecticity": "why"}},
+             "field 'xfail.symplecticity': not a claim this case checks"),
+            ({"name": "c", "claims": ["global-order", "global-order"]}, "field 'claims[1]': 'global-order' is listed twice"),
+            ("{not json", "not valid JSON")]
+    for k, (case, message) in enumerate(rows):
+        directory = tmp_path / str(k)
+        directory.mkdir()
+        code, output = collected(directory, case)
+        assert code != 0 and "1 error" in output, (case, output)
+        assert "cases/odd.json: " in output and message in output, (case, output)
+        assert "AttributeError" not in output and "Traceback" not in output, (case, output)

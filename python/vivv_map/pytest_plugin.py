@@ -50,14 +50,23 @@ class VivvCaseFile(pytest.File):
     def collect(self):
         import json
 
-        case = json.loads(self.path.read_text())
+        try:
+            case = json.loads(self.path.read_text())
+        except (OSError, UnicodeDecodeError, ValueError) as error:
+            raise self.CollectError(f"{self.path}: not valid JSON: {error}") from None
+        for field, problem in case_shape_problems(case):
+            raise self.CollectError(f"{self.path}: " + (f"field '{field}': " if field else "") + problem)
         self.case_name = case.get("name", self.path.stem)
-        xfail = case.get("xfail", {}) if isinstance(case.get("xfail"), dict) else {}
-        for claim in case.get("claims", []):
-            item = VivvClaimItem.from_parent(self, name=str(claim))
+        xfail = case.get("xfail", {})
+        for claim in case["claims"]:
+            item = VivvClaimItem.from_parent(self, name=claim)
             if claim in xfail:
                 reason = xfail[claim] if isinstance(xfail[claim], str) else xfail[claim].get("reason", "")
-                item.add_marker(pytest.mark.xfail(reason=f"the case expects it to fail: {reason}", strict=True))
+                # Only the case's own expected failure — vivv's verdict "xfail" — is pytest's expected
+                # failure: raises= makes any other exception (a fail for another reason, an error, an
+                # inconclusive verdict, a refused run) an ordinary failure, as vivv's exit status is.
+                item.add_marker(pytest.mark.xfail(reason=f"the case expects it to fail: {reason}", strict=True,
+                                                  raises=VivvExpectedFailure))
             yield item
 
     def run(self):
@@ -76,6 +85,43 @@ class VivvClaimFailure(Exception):
     """A claim that did not pass: vivv's verdict and reason, shown without a traceback."""
 
 
+class VivvExpectedFailure(VivvClaimFailure):
+    """vivv's verdict "xfail": the claim failed as the case's "xfail" states, and only that."""
+
+
+def case_shape_problems(case):
+    """(field, problem) for each part of a case file the collector reads — the file an object, its
+    claims a non-empty list of distinct names, its xfail an object of claims it lists, each with a
+    reason or an object — that vivv refuses (exit 2) before any computation; empty when none."""
+    if not isinstance(case, dict):
+        return [("", f"expected a JSON object (a case), got {type(case).__name__ if case is not None else 'null'}")]
+    claims = case.get("claims")
+    if not isinstance(claims, list) or not all(isinstance(claim, str) for claim in claims):
+        return [("claims", "expected a list of claim names, got " + json_text(claims))]
+    if not claims:
+        return [("claims", "expected at least one claim")]
+    for i, claim in enumerate(claims):
+        if claim in claims[:i]:
+            return [(f"claims[{i}]", f"'{claim}' is listed twice")]
+    xfail = case.get("xfail", {})
+    if not isinstance(xfail, dict):
+        return [("xfail", "expected an object {claim: reason}, got " + json_text(xfail))]
+    for claim, expected in xfail.items():
+        if claim not in claims:
+            return [(f"xfail.{claim}", "not a claim this case checks (its claims: " + ", ".join(claims) + ")")]
+        if not isinstance(expected, (str, dict)):
+            return [(f"xfail.{claim}", "expected the reason the claim is known to fail, or an object with it, got "
+                     + json_text(expected))]
+    return []
+
+
+def json_text(value, limit=80):
+    import json
+
+    text = json.dumps(value, ensure_ascii=False)
+    return text if len(text) <= limit else text[:limit - 1] + "…"
+
+
 class VivvClaimItem(pytest.Item):
     def runtest(self):
         from .testing import _shortened
@@ -90,7 +136,7 @@ class VivvClaimItem(pytest.Item):
         if verdict in ("pass", "xpass"):  # an xpass: the item's strict xfail marker fails it
             return
         if verdict == "xfail":  # the case's xfail: the failure it states (the item's marker reports it)
-            raise VivvClaimFailure(f"{case} / {self.name}: xfail, as the case states: "
+            raise VivvExpectedFailure(f"{case} / {self.name}: xfail, as the case states: "
                                    f"{_shortened(outcome.claim(case, self.name).get('explanation', ''))}")
         why = outcome.claim(case, self.name).get("explanation", "") if verdict is not None else "not in the report"
         raise VivvClaimFailure(f"{case} / {self.name}: {verdict}: {_shortened(why, 600)}")

@@ -40,7 +40,14 @@ EXTREME_NUMBERS = ["1e5000", "-1e5000", "1e-400", "0", "-0", "nan", "inf", "+2",
 EXTREME_FORMULAS = ["", "(", "q^", "q^q^q^q^q^q^q", "sin(" * 200 + "q" + ")" * 200, "1/0", "sqrt(-1)",
                     "log(0)", "q*", "L(q, w)", "w^2/2 - cos(q", "w^1e9", "exp(exp(exp(q)))", "q/(q-q)",
                     "(" * 9990 + "q" + ")" * 9990, "-(" * 6600 + "q" + ")" * 6600, "q^" * 9990 + "q",
-                    "(" * 501 + "q" + ")" * 501]
+                    "(" * 501 + "q" + ")" * 501,
+                    # Indexed families, sums and index arithmetic (issue 67): what would wrap in 64
+                    # bits, bounds far past any family, sums too large to expand, reserved indices.
+                    "x[4294967296*4294967296 + 1]", "sum(i = 1..4294967296*4294967296 + 3, x[i,1])",
+                    "sum(i = 1..1099511627776, x[i,1])", "x[1099511627776*1099511627776]", "x[-9223372036854775807]",
+                    "sum(i = 1..1000000, sum(j = 1..1000000, x[1,1]*x[1,2]))", "sum(pi = 1..2, x[pi,1])",
+                    "sum(i = 1..3, sum(i = 1..3, x[i,1]))", "x[0,1]", "x[1]", "x[i,1]",
+                    "sum(i = 1..1000000, " + "*".join(["x[1,1]"] * 500) + ")"]
 
 
 def mutate_json(value, rng):

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# vivv under an address-space cap (ulimit -v, RLIMIT_AS): a formula whose recording needs more than
+# the cap leaves is refused while it is read — exit 2, the estimate and the limit named, no report,
+# within seconds and without std::bad_alloc — and a case that fits completes under the same cap.
+#   check_memory_limits.sh VIVV PYTHON WORK_DIR
+# Not run under AddressSanitizer (tests/sanitize.sh): its shadow memory reserves terabytes of
+# address space, which no cap below the machine's memory leaves.
+set -euo pipefail
+vivv=$1 python=$2 work=$3
+rm -rf "$work" && mkdir -p "$work"
+cap_kib=1500000  # about 1.4 GiB of address space
+# All pairs of N particles in space, a Lennard-Jones sum: N = 300 is 44,850 pairs, several
+# hundred thousand operations of 1 + 2·900 long doubles each: some 10 GiB, far past the cap; N = 4
+# reads and runs in a few MiB.
+"$python" - "$work" <<'EOF'
+import json, sys
+work = sys.argv[1]
+for n, name in ((300, "pairs-beyond-the-cap"), (4, "pairs-within-the-cap")):
+    r2 = "(x[i,1]-x[j,1])^2 + (x[i,2]-x[j,2])^2 + (x[i,3]-x[j,3])^2"
+    L = (f"sum(i = 1..{n}, sum(k = 1..3, v[i,k]^2))/2 - "
+         f"sum(i = 1..{n}, sum(j = i+1..{n}, 1/({r2})^6 - 1/({r2})^3))")
+    q = [str(1.5 * i + 0.1 * k) for i in range(n) for k in range(3)]
+    case = {"name": name, "system": {"name": "pairs", "lagrangian": L, "coordinates": [{"x": [n, 3]}],
+                                      "velocities": [{"v": [n, 3]}]},
+            "initial": {"q": q, "w": ["0"] * (3 * n)}, "T": "0.5", "steps": [8, 16, 32, 64], "scalar": "mpfr", "digits": 30,
+            "discretization": {"kind": "midpoint"}, "claims": ["global-order"]}
+    json.dump(case, open(f"{work}/{name}.json", "w"))
+EOF
+code=0
+(ulimit -v $cap_kib; exec "$vivv" run "$work/pairs-beyond-the-cap.json" --out "$work/beyond" --quiet) \
+  > "$work/beyond.log" 2>&1 || code=$?
+cat "$work/beyond.log"
+[ "$code" -eq 2 ] || { echo "expected exit 2 for the case beyond the cap, got $code"; exit 1; }
+grep -q "field 'system.lagrangian': reading this system needs more than the [0-9.]* GiB this process may take (what its address-space limit, RLIMIT_AS or ulimit -v, leaves)" "$work/beyond.log" ||
+  { echo "the refusal does not name the estimate and the address-space limit"; exit 1; }
+if grep -q "bad_alloc" "$work/beyond.log"; then echo "std::bad_alloc instead of the estimate"; exit 1; fi
+[ ! -e "$work/beyond/report.json" ] || { echo "a report was written for a refused case"; exit 1; }
+code=0
+(ulimit -v $cap_kib; exec "$vivv" run "$work/pairs-within-the-cap.json" --out "$work/within" --quiet) \
+  > "$work/within.log" 2>&1 || code=$?
+cat "$work/within.log"
+[ "$code" -eq 0 ] || { echo "expected exit 0 for the case within the cap, got $code"; exit 1; }
+grep -q '"verdict": "pass"' "$work/within/report.json" || { echo "global-order did not pass within the cap"; exit 1; }
+echo "refused beyond the cap with its estimate, completed within it"
