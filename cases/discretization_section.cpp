@@ -27,7 +27,12 @@ void check_expression(const FormulaNode& tree, int dimension,
   scope.names["qb"] = qb;
   scope.names["qe"] = qe;
   scope.names["h"] = FormulaValue<V>::scalar(recording.input(2 * dimension), false);
-  for (const auto& [name, value] : parameters) scope.names[name] = FormulaValue<V>::scalar(V(from_decimal<T>(value)), true);
+  // As the run binds them (core/formulas/formula_discretization.hpp): a parameter array's members
+  // m[1], m[2], … as the family m.
+  std::vector<std::string> names;
+  std::vector<V> values;
+  for (const auto& [name, value] : parameters) names.push_back(name), values.push_back(V(from_decimal<T>(value)));
+  bind_formula_names<T, V>(scope, names, values, true);
   scope.dimension = dimension;
   scope.lagrangian = [](const std::vector<V>& x, const std::vector<V>& v) {
     V sum = 0;

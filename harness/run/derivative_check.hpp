@@ -11,7 +11,11 @@
 //                   h: ∂/∂q_1 [L_d^past(q_0, q_1) + L_d^future(q_1, q_2)] by differences of L_d.
 // Each residual is judged against its own terms' size: it may reach √u of it (u the larger of
 // the unit roundoff and the reference's tolerance: far above what differences leave, far below
-// the O(1) a wrong derivative rule makes) plus 100 × what halving the increment changes.
+// the O(1) a wrong derivative rule makes) plus 100 × what halving the increment changes, plus
+// what the rounding of the values differenced leaves: a central difference of f over ±δ carries
+// up to ε·max|f|/δ of f's rounding, and L's values are allowed rounding_ulps ulps of their size.
+// L = v²/2 − x⁵⁰ at x = 0.5 in double has ∂L/∂x ≈ 9e-14 beside values of 0.1: the rounding of
+// those values alone (4e-12 a difference) once made this check blame vivv's derivatives.
 #pragma once
 
 #include <cmath>
@@ -24,10 +28,14 @@
 
 namespace vivv {
 
+// The ulps of rounding a value of L or L_d may carry, each a few operations' worth.
+inline constexpr int rounding_ulps = 64;
+
 // A residual and what it may reach.
 template <class T>
 struct DifferenceResidual {
   T residual = 0, allowed = 0, scale = 0;
+  T rounding = 0;  // what the rounding of the values differenced may leave in the residual
   bool holds() const { return residual <= allowed; }
 };
 
@@ -83,6 +91,10 @@ DifferenceResidual<typename System::Scalar> euler_lagrange_residual(
     return T(system.lagrangian(as_point<T, N>(q), as_point<T, N>(w)));
   };
   const int n = static_cast<int>(begin.q.size());
+  T value_size = 0;  // max |L| over the states differenced about
+  for (const State<T, N>* state : {&begin, &end})
+    value_size = max(value_size, T(abs(value(state->q, state->w))));
+  for (const auto& node : nodes) value_size = max(value_size, T(abs(value(node.q, node.w))));
   T q_size = 0, w_size = 0;
   for (int i = 0; i < n; ++i)
     q_size = max(q_size, T(abs(begin.q[i]))), w_size = max(w_size, T(abs(begin.w[i])));
@@ -106,10 +118,12 @@ DifferenceResidual<typename System::Scalar> euler_lagrange_residual(
       r.residual = max(r.residual, T(abs(T(change[i] - impulse[i]))));
       r.scale = max({r.scale, T(abs(change[i])), T(abs(impulse[i]))});
     }
+    // Two differences in w, and Σ weights·τ = τ of differences in q.
+    r.rounding = rounding_ulps * epsilon<T>() * value_size * (2 / dw[0] + tau / dq[0]);
     return r;
   };
   DifferenceResidual<T> coarse = residual_with(T(1)), fine = residual_with(T(2));
-  fine.allowed = sqrt(u) * fine.scale + 100 * abs(T(fine.residual - coarse.residual));
+  fine.allowed = sqrt(u) * fine.scale + 100 * abs(T(fine.residual - coarse.residual)) + fine.rounding;
   return fine;
 }
 
@@ -154,6 +168,10 @@ DifferenceResidual<typename System::Scalar> del_residual(
   if (!(motion > 0)) motion = size;
   if (!(motion > 0)) motion = 1;
   if (!(size > motion)) size = motion;
+  // max |L_d| of the two steps differenced about q_1.
+  const T value_size =
+      max(T(abs(T(discrete_lagrangian(system, scheme.past, as_point<T, N>(q0), as_point<T, N>(q1), h)))),
+          T(abs(T(discrete_lagrangian(system, scheme.future, as_point<T, N>(q1), as_point<T, N>(q2), h)))));
   const auto residual_with = [&](const T& scale, const T& shrink) {
     const Vector<T, N> delta = difference_steps<T, N>(T(scale / shrink), n);
     const Vector<T, N> past = central_gradient<T, N>(
@@ -173,11 +191,13 @@ DifferenceResidual<typename System::Scalar> del_residual(
       r.residual = max(r.residual, T(abs(T(past[i] + future[i]))));
       r.scale = max({r.scale, T(abs(past[i])), T(abs(future[i]))});
     }
+    r.rounding = rounding_ulps * epsilon<T>() * value_size * 2 / delta[0];  // two differences
     return r;
   };
   const auto judged_at = [&](const T& scale) {
     DifferenceResidual<T> coarse = residual_with(scale, T(1)), fine = residual_with(scale, T(2));
-    fine.allowed = sqrt(epsilon<T>()) * fine.scale + 100 * abs(T(fine.residual - coarse.residual));
+    fine.allowed =
+        sqrt(epsilon<T>()) * fine.scale + 100 * abs(T(fine.residual - coarse.residual)) + fine.rounding;
     return fine;
   };
   // Increments sized by the step's motion, and — where the coordinates are larger — by the

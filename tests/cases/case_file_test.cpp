@@ -86,6 +86,33 @@ TEST(CaseFile, MalformedFieldsAreNamed) {
   EXPECT_EQ(failing_field(no_twin), "claims[1]");
 }
 
+// The comment's limit counts characters, not the bytes of their UTF-8 ("é" is two).
+TEST(CaseFile, CommentLimitCountsCharacters) {
+  nlohmann::json json = minimal_case();
+  std::string text;
+  for (int i = 0; i < 4000; ++i) text += "\u00e9";
+  json["comment"] = text;
+  EXPECT_EQ(failing_field(json), "");
+  json["comment"] = text + "\u00e9";
+  EXPECT_EQ(failing_field(json), "comment");
+}
+
+// An expression L_d may name a member of a parameter array, as the system's L does (the run
+// binds them so; the case reader once refused "m[2]" as "not a vector or an indexed family").
+TEST(CaseFile, AnExpressionLdNamesAParameterArraysMembers) {
+  nlohmann::json json = nlohmann::json::parse(R"({
+    "name": "c", "system": {"name": "two-masses", "coordinates": [{"x": [2]}], "velocities": [{"v": [2]}],
+                            "params": {"m": ["1", "2"]},
+                            "lagrangian": "sum(i = 1..2, m[i]*v[i]^2)/2 - (x[2] - x[1])^2/2"},
+    "initial": {"q": ["0", "1"], "w": ["0.1", "0"]}, "T": "1", "steps": [8, 16, 32],
+    "discretization": {"kind": "expression", "order": 2,
+                       "L_d": "h*L((qb + qe)/2, (qe - qb)/h) + 0*m[2]*h^3"},
+    "claims": ["global-order"]})");
+  EXPECT_EQ(failing_field(json), "");
+  json["discretization"]["L_d"] = "h*L((qb + qe)/2, (qe - qb)/h) + 0*m[3]*h^3";
+  EXPECT_EQ(failing_field(json), "discretization.L_d");
+}
+
 TEST(CaseFile, EveryDefaultSuiteCaseParses) {
   int count = 0;
   for (const auto& entry : std::filesystem::directory_iterator(std::string(VIVV_SOURCE_DIR) + "/cases/suite")) {

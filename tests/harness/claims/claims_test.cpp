@@ -421,6 +421,22 @@ TYPED_TEST(ClaimsTest, TheSignedCoefficientIsJudgedAgainstItsOwnErrorBar) {
   EXPECT_TRUE(series.holds && !*series.holds) << series.explanation;
   EXPECT_NE(series.explanation.find("settles on another value"), std::string::npos)
       << series.explanation;
+  // The fitted order of |c − E| is shown, not judged: a series the order rule left inconclusive
+  // ("the evidence recedes") is decided by the coefficient alone — converging c holds, c settled
+  // elsewhere fails; one the floor left inconclusive stays so.
+  for (const auto* coefficients : {&through_a_dip, &elsewhere}) {
+    Series receding;
+    receding.rule = "order", receding.inconclusive = true, receding.to_decide = "the sweep extended";
+    judge_signed_coefficient(receding, *coefficients, leading, T(0));
+    EXPECT_FALSE(receding.inconclusive) << receding.explanation;
+    EXPECT_TRUE(receding.to_decide.empty());
+    EXPECT_EQ(receding.holds && *receding.holds, coefficients == &through_a_dip) << receding.explanation;
+  }
+  Series at_floor;
+  at_floor.rule = "floor", at_floor.inconclusive = true;
+  judge_signed_coefficient(at_floor, through_a_dip, leading, T(0));
+  EXPECT_TRUE(at_floor.inconclusive);
+  EXPECT_EQ(at_floor.rule, "floor");
 }
 
 // The derivative-free cross-check: on the harmonic oscillator (ω = 1.3), the exact flow and a

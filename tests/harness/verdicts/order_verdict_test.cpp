@@ -31,6 +31,35 @@ TYPED_TEST_SUITE(OrderVerdictTest, VerdictScalars, testing::ScalarNames);
 
 // ---------------------------------------------------------------- verdicts and negative controls
 
+// A coarse part that only further in proves pre-asymptotic: the stiff FPU chain's refined sweep
+// (hω = 2 … 0.0156), pairwise orders 1.95, −0.80, 1.23, then settled near 2. The points before the
+// settled tail go and the claim passes; its negative controls — the same coarse part before a
+// tail that settles at 1 (a lower-order term), or a tail that falls away at the fine end — fail,
+// and so does the coarse part before a tail at 1.7 (a settled tail short of the bound).
+TYPED_TEST(OrderVerdictTest, APreAsymptoticCoarsePartBeforeASettledTailIsDropped) {
+  using T = TypeParam;
+  const std::vector<T> h = geometric_steps<T>("0.025", "2", 9);
+  const auto judged = [&](const std::vector<std::string>& orders) {
+    return judge_order(fit_order(h, errors_with_pairwise_orders<T>(orders), T(0)), 2, false, 0.2);
+  };
+  const OrderVerdict right = judged({"1.95", "-0.80", "1.23", "1.93", "1.99", "2.00", "2.00", "2.00"});
+  EXPECT_TRUE(right.holds) << right.explanation;
+  const OrderFit fit =
+      fit_order(h, errors_with_pairwise_orders<T>({"1.95", "-0.80", "1.23", "1.93", "1.99", "2.00", "2.00", "2.00"}),
+                T(0));
+  EXPECT_EQ(fit.used, (std::vector<int>{3, 4, 5, 6, 7, 8}));
+  ASSERT_EQ(fit.dropped.size(), 3u);
+  EXPECT_EQ(fit.dropped[2].second.rfind("pre-asymptotic (pairwise order 1.23 before a settled tail of 5", 0), 0u)
+      << fit.dropped[2].second;
+  for (const auto& orders : std::vector<std::vector<std::string>>{
+           {"1.95", "-0.80", "1.23", "1.02", "0.99", "1.00", "1.00", "1.00"},
+           {"1.95", "-0.80", "1.23", "1.93", "1.99", "2.00", "1.70", "1.40"},
+           {"1.95", "-0.80", "1.23", "1.70", "1.69", "1.71", "1.70", "1.70"}}) {
+    const OrderVerdict wrong = judged(orders);
+    EXPECT_FALSE(wrong.holds) << orders[6] << ": " << wrong.explanation;
+  }
+}
+
 TYPED_TEST(OrderVerdictTest, VerdictRejectsAnOrderOneSweepDeclaredOrderTwo) {
   using T = TypeParam;
   const std::vector<T> h = geometric_steps<T>("0.1", "1.7", 9);
@@ -224,6 +253,43 @@ TYPED_TEST(OrderVerdictTest, IntervalNoteOnlyOnAPassThatHasNotSettled) {
   const OrderVerdict quiet = judge_order(settled, 2, true, 0.2);
   EXPECT_TRUE(quiet.holds) << quiet.explanation;
   EXPECT_FALSE(contains(quiet.explanation, "interval excludes")) << quiet.explanation;
+}
+
+// An approach that overshoots the prediction and settles is not a recession: pairwise orders
+// 1.80, 1.932, 1.990, 2.00013 (past 2 by 1.3e-4, the last change 0.17 times the one before, toward
+// 2.002) hold against an exact 2 ± 0.2 and a lower bound 2 − 0.2. Controls: orders that move away
+// with changes that do not contract (1.99, 1.98, 1.96, 1.92: a first-order term) still recede,
+// and a contracting course whose finest order is already outside the tolerance still fails.
+TYPED_TEST(OrderVerdictTest, AnOvershootThatSettlesIsNotARecession) {
+  using T = TypeParam;
+  const std::vector<T> h = geometric_steps<T>("0.125", "2", 5);
+  const auto judged = [&](const std::vector<std::string>& orders, bool exact) {
+    return judge_order(fit_order(h, errors_with_pairwise_orders<T>(orders), T(0)), 2, exact, 0.2);
+  };
+  for (bool exact : {false, true}) {
+    const OrderVerdict settling = judged({"1.80", "1.932", "1.990", "2.00013"}, exact);
+    EXPECT_TRUE(settling.holds) << settling.explanation;
+    EXPECT_FALSE(settling.receding);
+    const OrderVerdict receding = judged({"1.99", "1.98", "1.96", "1.92"}, exact);
+    EXPECT_TRUE(receding.receding) << receding.explanation;
+    EXPECT_FALSE(receding.holds);
+  }
+  const OrderVerdict beyond = judged({"1.90", "2.10", "2.22", "2.26"}, true);
+  EXPECT_FALSE(beyond.holds) << beyond.explanation;
+  // Orders that reached their own noise after a contracting approach (Yoshida's composition in
+  // double, local order against 5): they hold. Controls: the same finest changes after a trend
+  // that never contracted (5.03, 5.02, 5.01, 5.00, 4.99), and changes that double, recede.
+  const std::vector<T> long_h = geometric_steps<T>("0.125", "2", 8);
+  const auto judged_5 = [&](const std::vector<std::string>& orders) {
+    const std::vector<T> steps(long_h.begin(), long_h.begin() + static_cast<std::ptrdiff_t>(orders.size() + 1));
+    return judge_order(fit_order(steps, errors_with_pairwise_orders<T>(orders), T(0)), 5, false, 0.2);
+  };
+  const OrderVerdict noise = judged_5({"5.24", "5.10", "5.04", "5.02", "5.012", "5.001", "4.989"});
+  EXPECT_TRUE(noise.holds) << noise.explanation;
+  const OrderVerdict flat = judged_5({"5.042", "5.031", "5.019", "5.007", "4.995"});
+  EXPECT_TRUE(flat.receding) << flat.explanation;
+  const OrderVerdict doubling = judged_5({"5.10", "5.095", "5.085", "5.065", "5.025", "4.945"});
+  EXPECT_TRUE(doubling.receding) << doubling.explanation;
 }
 
 // e = h² + d·h: a second-order error with a small first-order term, as an off-centre quadrature
