@@ -205,8 +205,8 @@ int halvings_to_cross(const Recession& recession, double predicted, bool exact, 
 // at least, the finest past p − 1 + tol (no integer order but p is left below p + 1), each
 // distance p − o at most `closing_ratio` times the one before, the last ratio no larger than the
 // one before it or than 1/2 (they do not grow, except toward the 1/2 of C h^p (1 − d h), whose
-// ratios rise from below it: 0.29, 0.42, 0.46). e = C h^p (1 + d h) closes by 1/2 per halving; a degree-2
-// Galerkin rule (2 Gauss nodes) on a double pendulum in long double showed one-step orders 5.17,
+// ratios rise from below it: 0.29, 0.42, 0.46). e = C h^p (1 + d h) closes by 1/2 per halving; a
+// degree-2 Galerkin rule (2 Gauss nodes) on a double pendulum in long double showed one-step orders 5.17,
 // 5.43, 5.68 against 6 (distances closing by 0.69, 0.56), and 5.83 at the next step, below the
 // floor: it failed. A lower-order term beside h^p makes the distance close ever more slowly and
 // turn (its share grows as h shrinks): the ratios grow toward 1, and it still fails. Orders that
