@@ -215,6 +215,9 @@ std::string notes_html(const json& c, const json& claim) {
   if (claim.contains("xfail_reason"))
     notes += "<div class=\"note-cell\" data-note=\"xfail\">known failure: " +
              escape(text_of(claim, "xfail_reason")) + "</div>";
+  if (!text_of(claim, "weakness").empty())
+    notes += "<div class=\"note-cell\" data-note=\"weakness\"><b>weak pass:</b> " +
+             escape(text_of(claim, "weakness")) + "</div>";
   if (!text_of(claim, "detection_limit").empty())
     notes += "<div class=\"note-cell\" data-note=\"detection-limit\">detection limit: " +
              escape(text_of(claim, "detection_limit")) + "</div>";

@@ -121,6 +121,7 @@ nlohmann::json case_json(const CaseResult& result) {
                         {"decisive_series", claim.decisive_series},
                         {"evidence", claim.evidence}};
     if (!claim.xfail_reason.empty()) c["xfail_reason"] = claim.xfail_reason;
+    if (!claim.weakness.empty()) c["weakness"] = claim.weakness;
     nlohmann::json all_series = nlohmann::json::array();
     for (const auto& series : claim.series) all_series.push_back(series_json(series));
     c["series"] = all_series;
@@ -435,7 +436,10 @@ static void write_claims_table(std::ostream& out, const nlohmann::json& report, 
       const bool regressed =
           claim.value("baseline", nlohmann::json::object()).value("status", std::string()) ==
           "regressed";
-      if (!verbose && !regressed && claim.value("verdict", "") == "pass") {
+      // A weak pass is listed: it is weaker than its precision promises (its line below says why).
+      const bool weak = claim.contains("weakness");
+      if (weak) note += (note.empty() ? "" : "; ") + std::string("weak: see below");
+      if (!verbose && !regressed && !weak && claim.value("verdict", "") == "pass") {
         ++passes_left_out;
         continue;
       }
@@ -484,6 +488,14 @@ static void write_claims_table(std::ostream& out, const nlohmann::json& report, 
             << claim.value("detection_limit", std::string("none: the measurement cannot be trusted"));
       out << "\n";
     }
+  // A pass weaker than its precision promises: why, and what it could still have caught.
+  for (const auto& c : report["cases"])
+    for (const auto& claim : c["claims"]) {
+      if (!claim.contains("weakness") || claim.value("verdict", "") != "pass") continue;
+      out << c.value("name", std::string()) << " / " << claim.value("id", std::string())
+          << ": pass, but weak: " << claim.value("weakness", std::string()) << "; detection limit: "
+          << claim.value("detection_limit", std::string()) << "\n";
+    }
   // What each pass could have caught: a pass is only as strong as its detection limit.
   if (passes_left_out > 0)
     out << passes_left_out << " passing claim" << (passes_left_out == 1 ? "" : "s")
@@ -492,7 +504,7 @@ static void write_claims_table(std::ostream& out, const nlohmann::json& report, 
     if (verbose)
     for (const auto& claim : c["claims"]) {
       const std::string limit = claim.value("detection_limit", std::string());
-      if (claim.value("verdict", "") != "pass" || limit.empty()) continue;
+      if (claim.value("verdict", "") != "pass" || limit.empty() || claim.contains("weakness")) continue;
       out << c.value("name", std::string()) << " / " << claim.value("id", std::string())
           << ": pass; detection limit: " << limit << "\n";
     }

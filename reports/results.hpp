@@ -86,6 +86,11 @@ struct ClaimResult {
   int decisive_series = 0;  // the series that decided the verdict (a failing or inconclusive one)
   std::string detection_limit;  // what this claim could have caught (the decisive series')
   std::string xfail_reason;  // the case's reason, when it marks the claim as a known failure
+  // A pass much weaker than the scalar promises: its tolerance or floor carried noise a program's
+  // answers showed, far above the rounding of the precision they are sent in (why, in words;
+  // empty otherwise). Listed in the console beside failures; --baseline regresses a claim that
+  // was not weak before.
+  std::string weakness;
   std::vector<Series> series;  // series[0] is the claim's main measurement
   nlohmann::json evidence = nlohmann::json::object();
 };

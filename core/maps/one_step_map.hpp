@@ -73,6 +73,10 @@ struct OneStepMap {
     (void)x, (void)h;
     return std::nullopt;
   }
+  // The largest noise measured in its answers so far, relative to their size and in units of
+  // double's ε (answer_noise, last_jacobian_unit): a few for a program that rounds like a double,
+  // 10^7 for one whose answers carry float32 noise; nullopt where the map measures none.
+  virtual std::optional<double> answer_noise_in_ulps() const { return std::nullopt; }
   // The evaluations the map says its steps have made so far (a program that took up the protocol's
   // extension "evaluations": forces, or L, counted in the program): the work-precision diagram's
   // cost of a map whose work vivv does not see; nullopt where the map does not report them.

@@ -254,4 +254,41 @@ struct PerStepCheck {
   }
 };
 
+// A program that computes in double may answer with less than a double's digits (float32 in
+// one term, an implicit solver stopped early): its map measures the noise (fourth differences of
+// its answers, OneStepMap::answer_noise_in_ulps), and a claim whose tolerance or floor carried that
+// noise — symplecticity's per-step tolerance, local-order's floor — is only as strong as the noise
+// is small. Recorded in the evidence; a pass with `weak_answer_noise_ulps` or more of a double's ε
+// of it — answers with fewer than 12 of a double's 16 digits — is weak (ClaimResult::weakness):
+// its tolerance or floor is then 10³ … 10⁴ times a double's, since local-order's floor grows with
+// the noise as it is and symplecticity's tolerance with 1.5·r·10⁴/|J|. Measured: correct NumPy
+// maps of tests/process and examples/python-integrator 0.25 … 1.1 ε; the midpoint DEL of an
+// elastic pendulum in Python floats, Newton stopped at 10^-15 with p' from (q' − q)/h, 1470 ε
+// (symplecticity's tolerance raised up to 48 times; not weak); a Verlet whose force is rounded to
+// float32 1.5·10⁶ … 2.4·10⁷ ε (weak).
+inline constexpr double weak_answer_noise_ulps = 1e4;
+template <LagrangianSystem System>
+void record_answer_noise(const CaseContext<System>& context, ClaimResult& claim, const std::string& carried_by) {
+  if (!context.map) return;
+  const std::optional<double> ulps = context.map->answer_noise_in_ulps();
+  if (!ulps) return;
+  const double relative = *ulps * std::numeric_limits<double>::epsilon();
+  const double digits = relative > 0 ? -std::log10(relative) : std::numeric_limits<double>::digits10 + 1;
+  claim.evidence["answer_noise"] = {
+      {"relative", format_scalar(relative, 3)},
+      {"double_ulps", format_scalar(*ulps, 3)},
+      {"significant_digits", format_scalar(digits, 2)},
+      {"carried_by", carried_by},
+      {"rule",
+       "the largest spread of the program's answers' rounding, |Δ⁴ y_i| / √70 over fourth differences of its "
+       "answers at spacings 10^-8 and 10^-6, relative to max(1, |y_i|); a pass with " +
+           format_scalar(weak_answer_noise_ulps, 3) + " or more double ulps of it is weak"}};
+  if (claim.verdict == "pass" && *ulps >= weak_answer_noise_ulps)
+    claim.weakness = "the program's answers carry noise of " + format_scalar(relative, 2) +
+                     " of their size (about " + format_scalar(digits, 2) + " significant digits, not the " +
+                     std::to_string(std::numeric_limits<double>::digits10 + 1) + " of a double: " +
+                     format_scalar(*ulps, 2) + " times its rounding), and " + carried_by +
+                     " carried it: a defect below that noise could not have failed";
+}
+
 }  // namespace vivv

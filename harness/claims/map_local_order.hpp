@@ -116,6 +116,7 @@ struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
                              "where fewer than 3 errors clear the floor; each from " + std::to_string(states) +
                              " states x(j·T/" + std::to_string(states) + ") of the reference orbit";
     conclude(claim);
+    record_answer_noise(context, claim, "the floor below which one step's error is not fitted");
     // What the failures mean, said once after them all (not once per state: a screen of repeats).
     if (claim.verdict == "fail" && !defect_times.empty()) {
       std::string times;

@@ -42,6 +42,7 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
     PerStepCheck<T> check;
     std::vector<T> units;  // the rounding unit of the judged (worst) step at each h
     std::vector<JacobianCheck> jacobian_checks;  // the judged step's Jacobian against its map
+    bool noise_raised_tolerance = false;  // a program's measured answer noise raised some step's tolerance
     if (context.map) {
       // A one-step map: its Jacobian by jets through its own code; no Hessian blocks to size.
       visit_map_trajectories(context, "symplecticity: Jacobians", [&](const T& h, const auto& x) {
@@ -51,7 +52,18 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
         for (std::size_t k = 0; k + 1 < x.size(); ++k) {
           jacobians.push_back(context.map->jacobian(x[k], h));
           noise.push_back(context.map->last_jacobian_unit() / context.map->jacobian_unit());
+          noise_raised_tolerance = noise_raised_tolerance || noise.back() > 1;
           scale = scale.cwiseMax(phase_size<T, N>(context, x[k].q, x[k].w, k, x.size() - 1));
+        }
+        // The noise is measured at the first step and every eighth, the largest so far standing
+        // for the steps between; the largest of the whole run stands for every step of it (a step
+        // before the measurement that found it is no less noisy), scaled by each step's |J| as
+        // the map scales it (ProcessMap: 1.5·r·10^e / max(1, |J|)).
+        if (!jacobians.empty() && noise.back() > 1) {
+          const T last_size = nan_max(T(1), max_entry<T, twice(N), twice(N)>(jacobians.back()));
+          for (std::size_t k = 0; k < jacobians.size(); ++k)
+            noise[k] = nan_max(noise[k], T(noise.back() * last_size /
+                                            nan_max(T(1), max_entry<T, twice(N), twice(N)>(jacobians[k]))));
         }
         std::size_t worst = 0;
         units.push_back(judge<T, N>(check, h, jacobians, noise, context.map->jacobian_unit(), exponents, worst));
@@ -70,7 +82,17 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
         };
         Vector<T, twice(N)> y(2 * n);
         y << at.q, momentum(context.system, at.q, at.w);
-        jacobian_checks.push_back(check_jacobian(h, worst, step, y, jacobians[worst], scale, context.working_epsilon()));
+        // A double program's answers carry the noise it measured (answer_noise, a spread r): its
+        // differences may differ from its Jacobian by 2·3r/δ more (3r bounds a rounding of spread r;
+        // a Verlet whose force kept 32 bits missed by 1.1e-7 against the 1.5e-8 its widths' changes
+        // allowed, by chance of its quantized rounding).
+        std::optional<Vector<T, twice(N)>> rounding;
+        if (const std::optional<T> noise_r = context.map->answer_noise(at, h)) {
+          rounding = Vector<T, twice(N)>(2 * n);
+          rounding->setConstant(T(3 * *noise_r));
+        }
+        jacobian_checks.push_back(check_jacobian(h, worst, step, y, jacobians[worst], scale, context.working_epsilon(),
+                                                 rounding ? &*rounding : nullptr));
       });
       claim.evidence["jacobian"] = context.map->jacobian_method();
       claim.evidence["jacobian_unit"] = to_decimal<T>(context.map->jacobian_unit(), 6);
@@ -163,6 +185,8 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
                          "symplectic to working precision at every step and every h, and so is the N-step map",
                          "the (q, p) map is not symplectic");
     conclude_jacobian_checks(claim, jacobian_checks);
+    if (noise_raised_tolerance)
+      record_answer_noise(context, claim, "the per-step tolerance (its Jacobian by differences of those answers)");
   }
 
   // The Jacobian of the judged step at one h against central differences of the step's map.

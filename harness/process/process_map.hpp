@@ -82,8 +82,8 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
              " (precision \"double\": the same instance, 17 digits) at widths δ = 10^-" +
              std::to_string(double_exponent()) +
              "·max(1, |y_j|) and 2δ in each of (q, p), extrapolated: (4·J_δ − J_2δ)/3; its rounding "
-             "from the noise r of the program's answers, measured by fourth differences at spacing 10^-" +
-             std::to_string(digits_ / 2) + " (at least 1.5·r/δ)";
+             "from the noise r of the program's answers, measured by fourth differences at spacings 10^-" +
+             std::to_string(digits_ / 2) + " and 10^-" + std::to_string(double_exponent() + 2) + " (at least 1.5·r/δ)";
     return "central differences of one step of " + name() + " in a second instance of it at " +
            std::to_string(fine_digits()) + " digits, step 10^-" +
            std::to_string(difference_exponent()) + "·max(1, |y_j|) in each of (q, p)";
@@ -104,10 +104,10 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   // stops at 1e-15 relative in q' and forms p' from (q' − q)/h passes its last digits on to p'
   // times 1/h, so the noise grows as h falls (a spherical pendulum's midpoint DEL in Python floats
   // measured 3.1e-11 … 2.2e-10 at h = 1/8 … 1/64 against a fixed 1.6e-10). The noise r is
-  // measured, not assumed: fourth differences of the answers at spacing s = 10^-⌊D/2⌋·max(1, |y_j|)
-  // along two directions, |Δ⁴| / √70 (the spread of Δ⁴ of independent rounding errors of spread r;
-  // its truncation, s⁴ times the map's fourth derivative, is 10^-32 of that derivative), the
-  // largest over the answers' entries. The Jacobian's unit is then at least 1.5·r·10^e / max(1, |J|).
+  // measured, not assumed: fourth differences of the answers at spacings s = 10^-⌊D/2⌋·max(1, |y_j|)
+  // and 10^-6·max(1, |y_j|) along four directions, |Δ⁴| / √70 (the spread of Δ⁴ of independent
+  // rounding errors of spread r; its truncation, s⁴ times the map's fourth derivative, is at most
+  // 10^-24 of that derivative), the largest over the answers' entries and spacings (noise_near). The Jacobian's unit is then at least 1.5·r·10^e / max(1, |J|).
   T last_jacobian_unit() const override { return last_unit_; }
   // The same measurement of a double program's noise at x for local-order's floor (the last one
   // kept: the floor is asked for at the same state and h more than once).
@@ -124,6 +124,11 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
       noise_key_ = key;
     }
     return noise_;
+  }
+
+  std::optional<double> answer_noise_in_ulps() const override {
+    if (!double_program_ || noise_in_ulps_ < 0) return std::nullopt;
+    return noise_in_ulps_;
   }
 
   State<T, N> step(const State<T, N>& x, const T& h) const override {
@@ -423,9 +428,17 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   }
 
   // The spread r of a double program's answers' rounding near y (last_jacobian_unit, answer_noise): fourth
-  // differences at spacing s along the directions (1, 1, …) and (1, −1, …), each point's answer
-  // one request; |Δ⁴ f_i| / √70 for every entry i of (q', p'), the largest. In MPFR at the
-  // caller's PrecisionGuard.
+  // differences at spacing s along four directions — (1, 1, …), (1, −1, …), q alone and p alone —,
+  // each point's answer one request (33 a measurement); |Δ⁴ f_i| / √70 for every entry i of (q', p'), the largest. Two spacings: 10^-⌊D/2⌋,
+  // and 10^-(e+2) (10^-6), a hundredth of the Jacobian's widths: rounding that is constant over
+  // bins wider than the fine spacing — a force rounded to float32, whose bins are 6·10^-8 of it —
+  // is smooth between bin edges, and the fine spacing alone measured it at 3·10^4 … 8·10^6 ε from
+  // one h to the next, while differences at the widths 10^-4 see it whole (symplecticity failed a
+  // Verlet with such a force by 1.5 times its tolerance at the h where the estimate was low). The
+  // coarse spacing's truncation, s⁴ times the map's fourth derivative, is 10^-24 of it. Quantized
+  // rounding makes Δ⁴ an integer number of bins, often 0: with two directions a Verlet whose force
+  // kept 30 bits measured 1500 ε at one state where four find 6·10⁴. In MPFR at
+  // the caller's PrecisionGuard.
   R noise_near(const std::string& step, const std::vector<std::string>& y, const T& h) const {
     using std::abs, std::max, std::pow, std::sqrt;
     const auto image = [&](const std::vector<R>& at) {
@@ -436,19 +449,28 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     std::vector<R> centre(2 * n);
     for (int j = 0; j < 2 * n; ++j) centre[j] = from_decimal<R>(y[j]);
     const std::vector<R> f0 = image(centre);
-    const R spacing = pow(R(10), -(digits_ / 2));
     R noise = 0;
-    for (int direction = 0; direction < 2; ++direction) {
-      std::array<std::vector<R>, 4> f;  // at k = −2, −1, 1, 2
-      const int ks[4] = {-2, -1, 1, 2};
-      for (int m = 0; m < 4; ++m) {
-        std::vector<R> at = centre;
-        for (int j = 0; j < 2 * n; ++j)
-          at[j] += ks[m] * spacing * max(R(1), R(abs(centre[j]))) * (direction == 1 && j % 2 ? -1 : 1);
-        f[m] = image(at);
+    for (const int exponent : {digits_ / 2, double_exponent() + 2}) {
+      const R spacing = pow(R(10), -exponent);
+      for (int direction = 0; direction < 4; ++direction) {
+        // (1, 1, …), (1, −1, …), q alone, p alone
+        const auto component = [&](int j) {
+          return direction == 0 ? 1 : direction == 1 ? (j % 2 ? -1 : 1) : (j < n) == (direction == 2) ? 1 : 0;
+        };
+        std::array<std::vector<R>, 4> f;  // at k = −2, −1, 1, 2
+        const int ks[4] = {-2, -1, 1, 2};
+        for (int m = 0; m < 4; ++m) {
+          std::vector<R> at = centre;
+          for (int j = 0; j < 2 * n; ++j) at[j] += ks[m] * spacing * max(R(1), R(abs(centre[j]))) * component(j);
+          f[m] = image(at);
+        }
+        for (int i = 0; i < 2 * n; ++i) {
+          const R spread = R(abs(R(f[0][i] - 4 * f[1][i] + 6 * f0[i] - 4 * f[2][i] + f[3][i]))) / sqrt(R(70));
+          noise = max(noise, spread);
+          noise_in_ulps_ = std::max(noise_in_ulps_, static_cast<double>(spread / max(R(1), R(abs(f0[i])))) /
+                                                        std::numeric_limits<double>::epsilon());
+        }
       }
-      for (int i = 0; i < 2 * n; ++i)
-        noise = max(noise, R(abs(R(f[0][i] - 4 * f[1][i] + 6 * f0[i] - 4 * f[2][i] + f[3][i])) / sqrt(R(70))));
     }
     return noise;
   }
@@ -558,6 +580,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   mutable std::string noise_key_;  // answer_noise's last (h, y) and what it measured there
   mutable T noise_ = 0;
   mutable T last_unit_ = 0;        // the last Jacobian's relative rounding (last_jacobian_unit)
+  mutable double noise_in_ulps_ = -1;  // the largest relative noise noise_near measured, in double's ε
   mutable std::optional<std::pair<State<T, N>, Vector<T, N>>> last_;  // the last answer: (q, w), p
   mutable long evaluations_ = 0;  // the "evaluations" of every step's answer so far (extension)
   mutable long batch_ = 16;       // the steps the next request of steps() asks for (extension "steps")

@@ -141,6 +141,13 @@ void compare_with_baseline(nlohmann::json& report, const nlohmann::json& baselin
           break;
         }
       }
+      // A pass that became weak (a program's answers now carry noise far above a double's
+      // rounding, ClaimResult::weakness) has lost what it could catch, whatever its series show.
+      if (claim.contains("weakness") && !found->second->contains("weakness")) {
+        regressed += (regressed.empty() ? "" : "; ") + std::string("weak now, not in the baseline: ") +
+                     claim["weakness"].get<std::string>();
+        rows.push_back({{"label", "weakness"}, {"status", "regressed"}});
+      }
       const bool compared = std::any_of(rows.begin(), rows.end(),
                                         [](const nlohmann::json& row) { return row["status"] != "not compared"; });
       const std::string status = !regressed.empty() ? "regressed"

@@ -3,22 +3,28 @@
 test's own), in Python's decimal at the digits vivv asks for: a map program for the process
 protocol's checks in every scalar (tests/CMakeLists.txt, process/duffing-*).
 
-usage: duffing.py [--perturb EPS] [--padded] [--jacobian [--wrong-jacobian-after K] [--huge-jacobian-at K]]
+usage: duffing.py [--perturb EPS] [--padded [--float32-force | --force-bits B]] [--jacobian [--wrong-jacobian-after K] [--huge-jacobian-at K]]
                   [--evaluations JSON]
 
 --perturb EPS scales each step's new momentum by 1 + EPS·h²: a map that is not symplectic by
 EPS·h² per step (symplecticity must fail; in double too). --padded computes in double and writes the digits of
 its doubles as if they were the precision asked for (symplecticity must err: its Jacobian cannot
-be measured). --evaluations JSON takes up the extension "evaluations" and sends JSON (2 for its two
+be measured). --float32-force (with --padded) rounds the force to a float32, the bug of one NumPy
+array left in float32: every answer still has a double's 17 digits, 8 of them noise; --force-bits B rounds it to B significant
+bits (24 is float32's). --evaluations JSON takes up the extension "evaluations" and sends JSON (2 for its two
 force evaluations a step; "2", -1, 1.5 or true are the malformed counts vivv must refuse) with
 every answer.
 """
 import decimal
 import json
+import math
 import sys
 
 perturb = decimal.Decimal(sys.argv[sys.argv.index("--perturb") + 1]) if "--perturb" in sys.argv else 0
 padded = "--padded" in sys.argv
+force_bits = 24 if "--float32-force" in sys.argv else None
+if "--force-bits" in sys.argv:
+    force_bits = int(sys.argv[sys.argv.index("--force-bits") + 1])
 # --jacobian: take up the extension "jacobian" and send d(x', p')/d(x, p), derived by hand;
 # --wrong-jacobian-after K: from the K-th Jacobian on, dp'/dx is 1 % too large (a planted bug).
 own_jacobian = "--jacobian" in sys.argv
@@ -28,6 +34,12 @@ wrong_after = int(sys.argv[sys.argv.index("--wrong-jacobian-after") + 1]) if "--
 evaluations = json.loads(sys.argv[sys.argv.index("--evaluations") + 1]) if "--evaluations" in sys.argv else None
 huge_at = int(sys.argv[sys.argv.index("--huge-jacobian-at") + 1]) if "--huge-jacobian-at" in sys.argv else None
 jacobians = 0
+
+
+def rounded(value, bits):
+    """value rounded to `bits` significant bits (24: a float32's, in range)."""
+    mantissa, exponent = math.frexp(value)
+    return math.ldexp(round(mantissa * 2**bits) / 2**bits, exponent)
 
 
 def send(message):
@@ -49,6 +61,8 @@ for line in sys.stdin:
     else:
         h, x, p = (decimal.Decimal(request[k] if k == "h" else request[k][0]) for k in ("h", "q", "p"))
     force = lambda y: -y - y * y * y
+    if force_bits is not None:
+        force = lambda y: rounded(-y - y * y * y, force_bits)
     stiffness = lambda y: -1 - 3 * y * y  # dF/dx
     x0 = x
     half = p + h / 2 * force(x)
