@@ -156,6 +156,27 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file);
 // The scalars a case may run in ("scalar", vivv run --scalar).
 const std::vector<std::string>& scalar_names();
 
+// The parameters as the case file writes them: a name for each scalar, an array for each family
+// (m[1], m[2], … back into "m": [...], in index order, as the case gives them), each value
+// through `value(name, text)`. The process greeting and the report carry them so: a program reads
+// "m" as the case's array, and no reader meets m[10] sorted before m[2].
+template <class Value>
+nlohmann::json parameters_as_written(const std::vector<std::pair<std::string, std::string>>& parameters,
+                                     Value&& value) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [name, text] : parameters) {
+    const auto bracket = name.find('[');
+    if (bracket == std::string::npos || name.back() != ']') {
+      out[name] = value(name, text);
+      continue;
+    }
+    nlohmann::json& members = out[name.substr(0, bracket)];
+    if (!members.is_array()) members = nlohmann::json::array();
+    members.push_back(value(name, text));  // the family's members come in index order (system_section.cpp)
+  }
+  return out;
+}
+
 // The catalogue system `name` written as a formula, with `parameters`: what runs a catalogue
 // system in a scalar other than MPFR (tests/core/formulas/formula_system_test.cpp checks it against the
 // compiled system).

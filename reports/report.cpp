@@ -102,9 +102,8 @@ nlohmann::json case_json(const CaseResult& result) {
   const auto as_used = [&](const std::string& field, const std::string& text) {
     return written.count(field) ? rounded_decimal(text, used_digits) : text;
   };
-  nlohmann::json parameters = nlohmann::json::object();
-  for (const auto& [name, value] : spec.parameters)
-    parameters[name] = as_used("system.params." + name, value);
+  const nlohmann::json parameters = parameters_as_written(
+      spec.parameters, [&](const std::string& name, const std::string& value) { return as_used("system.params." + name, value); });
   nlohmann::json initial = {{"q", nlohmann::json::array()}, {"w", nlohmann::json::array()}};
   for (std::size_t i = 0; i < spec.q.size(); ++i) {
     initial["q"].push_back(as_used("initial.q[" + std::to_string(i) + "]", spec.q[i]));

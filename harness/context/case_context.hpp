@@ -361,9 +361,8 @@ struct CaseContext {
     nlohmann::json system_json = spec.source.contains("system") && spec.source["system"].is_object()
                                      ? spec.source["system"]
                                      : nlohmann::json{{"name", spec.system}};
-    nlohmann::json parameters = nlohmann::json::object();
-    for (const auto& [name, value] : spec.parameters) parameters[name] = value;
-    system_json["params"] = parameters;
+    system_json["params"] =
+        parameters_as_written(spec.parameters, [](const std::string&, const std::string& value) { return value; });
     MapProcess::Options options;
     options.command = d.command;
     options.directory = std::filesystem::absolute(spec.file).parent_path().string();

@@ -196,7 +196,8 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, evaluations=N
     with "numpy"). jacobian(h, q, p), if given, returns the 2n x 2n matrix d(q', p')/d(q, p)
     (row i: the derivatives of the i-th component of (q', p') with respect to (q, p)), sent with
     each answer to a request marked "jacobian": true when vivv offers the extension. setup(system, dimension, number), if given, is
-    called once with the greeting's system (a dict: "name", "params", or a formula's fields), the
+    called once with the greeting's system (a dict: "name", "params" — a decimal string per name, a
+    list of them, in the case's order, for a family such as masses m — or a formula's fields), the
     dimension n and number(text) converting a decimal string to the arithmetic's numbers; it
     raises Decline(reason) for a system the program cannot step. evaluations(), if given, returns
     how many evaluations (of the forces, or of L) the program has made so far, a whole number: each

@@ -41,9 +41,16 @@ std::string problem_in_words(const json& c) {
   std::string text = text_of(c, "system");
   const json parameters = c.value("parameters", json());
   if (parameters.is_object() && !parameters.empty()) {
-    // In the report's (sorted) order of names; a family's members by their index (m[2] before m[10]).
+    // In the report's (sorted) order of names; a family's members by their index: an array as the
+    // case writes it, or (a report of an earlier vivv) keys m[1], m[2], … (m[2] before m[10]).
     std::vector<std::pair<std::string, std::vector<std::pair<long, std::string>>>> named;
     for (const auto& [name, value] : parameters.items()) {
+      if (value.is_array()) {
+        named.push_back({name, {}});
+        for (std::size_t i = 0; i < value.size(); ++i)
+          named.back().second.push_back({static_cast<long>(i + 1), number_in_words(value[i])});
+        continue;
+      }
       const std::size_t bracket = name.find('[');
       const std::string family = name.substr(0, bracket);
       if (named.empty() || named.back().first != family || bracket == std::string::npos) named.push_back({family, {}});
