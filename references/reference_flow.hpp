@@ -181,9 +181,12 @@ class ReferenceFlow {
   // a closed form's few ulps rest on the unit tests at higher precision.
   T check_tolerance() const { return check_local_tolerance() * 1000000; }
 
-  // `report(reached, target)` after every step of a Taylor cross-check (a closed form itself
-  // has no steps to report).
-  void set_progress(std::function<void(const T&, const T&)> report) { progress_ = std::move(report); }
+  // `check_report(reached, target)` after every step of a Taylor cross-check (a closed form
+  // itself has no steps to report: `report` is not called).
+  void set_progress(std::function<void(const T&, const T&)> /*report*/,
+                    std::function<void(const T&, const T&)> check_report = {}) {
+    progress_ = std::move(check_report);
+  }
 
   // Smallest local tolerance of the check: 1000 ε (100 ε is reachable, but slowly).
   static T check_floor() { return 1000 * epsilon<T>(); }

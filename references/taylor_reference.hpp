@@ -90,7 +90,7 @@ class TaylorReference {
     TaylorFlow<System> check(system_, check_step_tolerance());
     {
       std::lock_guard<std::mutex> lock(shared_->mutex);
-      check.integrator().on_progress = shared_->flow.integrator().on_progress;
+      check.integrator().on_progress = shared_->check_progress;
     }
     return state_distance<T, N>(advance(start, t), check.advance(start, t));
   }
@@ -122,11 +122,14 @@ class TaylorReference {
            ") and reports the max-norm difference";
   }
 
-  // `report(reached, target)` after every step of the flow and of its check (copies of this
-  // reference share it).
-  void set_progress(std::function<void(const T&, const T&)> report) const {
+  // `report(reached, target)` after every step of the flow, and `check_report` after every step
+  // of its check (copies of this reference share them): the check's progress under its own
+  // name, not read as the flow starting again.
+  void set_progress(std::function<void(const T&, const T&)> report,
+                    std::function<void(const T&, const T&)> check_report = {}) const {
     std::lock_guard<std::mutex> lock(shared_->mutex);
     shared_->flow.integrator().on_progress = std::move(report);
+    shared_->check_progress = std::move(check_report);
   }
 
   // Work so far: steps, order, multiply-adds of the cached trajectories.
@@ -152,6 +155,7 @@ class TaylorReference {
     Shared(const System& system, const T& step_tolerance) : flow(system, step_tolerance) {}
     std::mutex mutex;
     TaylorFlow<System> flow;
+    std::function<void(const T&, const T&)> check_progress;  // the cross-check's (set_progress)
     std::list<Cached> cache;  // most recently used first
   };
 

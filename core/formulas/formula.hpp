@@ -379,9 +379,7 @@ FormulaValue<V> interpret(const FormulaNode& node, const FormulaScope<T, V>& sco
         }
         return Value::scalar(scope.lagrangian(x.components, v.components), false);
       }
-      if (node.operands.size() != 1)
-        throw FormulaError(node.position, node.text + " takes one argument, got " +
-                                              std::to_string(node.operands.size()));
+      // The name first: an unknown r2(i, j) is unknown, not a function of the wrong arity.
       bool known = false;
       for (const auto& f : formula_functions()) known = known || f == node.text;
       if (!known) {
@@ -390,6 +388,9 @@ FormulaValue<V> interpret(const FormulaNode& node, const FormulaScope<T, V>& sco
         throw FormulaError(node.position, "unknown function '" + node.text + "'; expected one of: " + names +
                                               (scope.lagrangian ? ", L" : ""));
       }
+      if (node.operands.size() != 1)
+        throw FormulaError(node.position, node.text + " takes one argument, got " +
+                                              std::to_string(node.operands.size()));
       Value x = scalar_of(node.operands[0], "argument");
       return Value::scalar(formula_detail::apply_function<T>(node.text, x.components[0], node.position),
                            x.is_constant);

@@ -200,6 +200,8 @@ TEST(FormulaSystemErrors, NamePositionAndExpectation) {
   EXPECT_NE(error_of("foo(q)").find("unknown function 'foo'"), std::string::npos);
   EXPECT_NE(error_of("L(q, w)").find("discrete Lagrangian"), std::string::npos);
   EXPECT_NE(error_of("sin(q, w)").find("one argument"), std::string::npos);
+  // An unknown name with two arguments is unknown, not a function of the wrong arity.
+  EXPECT_NE(error_of("r2(q, w)").find("unknown function 'r2'"), std::string::npos);
   EXPECT_NE(error_of("q[1]").find("not a vector"), std::string::npos);
   EXPECT_EQ(error_of("w^2 + k"), "no error");
   try {
