@@ -107,7 +107,8 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   // measured, not assumed: fourth differences of the answers at spacings s = 10^-⌊D/2⌋·max(1, |y_j|)
   // and 10^-6·max(1, |y_j|) along four directions, |Δ⁴| / √70 (the spread of Δ⁴ of independent
   // rounding errors of spread r; its truncation, s⁴ times the map's fourth derivative, is at most
-  // 10^-24 of that derivative), the largest over the answers' entries and spacings (noise_near). The Jacobian's unit is then at least 1.5·r·10^e / max(1, |J|).
+  // 10^-24 of that derivative), the largest over the answers' entries and spacings (noise_near).
+  // The Jacobian's unit is then at least 1.5·r·10^e / max(1, |J|).
   T last_jacobian_unit() const override { return last_unit_; }
   // The same measurement of a double program's noise at x for local-order's floor (the last one
   // kept: the floor is asked for at the same state and h more than once).
@@ -429,8 +430,9 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
 
   // The spread r of a double program's answers' rounding near y (last_jacobian_unit, answer_noise): fourth
   // differences at spacing s along four directions — (1, 1, …), (1, −1, …), q alone and p alone —,
-  // each point's answer one request (33 a measurement); |Δ⁴ f_i| / √70 for every entry i of (q', p'), the largest. Two spacings: 10^-⌊D/2⌋,
-  // and 10^-(e+2) (10^-6), a hundredth of the Jacobian's widths: rounding that is constant over
+  // each point's answer one request (33 a measurement); |Δ⁴ f_i| / √70 for every entry i of
+  // (q', p'), the largest. Two spacings: 10^-⌊D/2⌋, and 10^-(e+2) (10^-6), a hundredth of the
+  // Jacobian's widths: rounding that is constant over
   // bins wider than the fine spacing — a force rounded to float32, whose bins are 6·10^-8 of it —
   // is smooth between bin edges, and the fine spacing alone measured it at 3·10^4 … 8·10^6 ε from
   // one h to the next, while differences at the widths 10^-4 see it whole (symplecticity failed a
