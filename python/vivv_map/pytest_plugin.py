@@ -1,6 +1,17 @@
-"""The pytest fixture `vivv` (loaded by the installed package's entry point, or by
-`pytest_plugins = ["vivv_map.pytest_plugin"]` in a conftest.py): vivv(*cases, **options) runs
-vivv into a temporary directory of the test and returns its vivv_map.testing.Run."""
+"""vivv's pytest plugin: the fixture `vivv` and case files collected as tests.
+
+It loads by itself where vivv_map is installed (its entry point); used from the source tree
+(PYTHONPATH=python) load it with `-p vivv_map.pytest_plugin`, `addopts = -p vivv_map.pytest_plugin`
+in the pytest configuration, or `pytest_plugins = ["vivv_map.pytest_plugin"]` in a conftest.py —
+each of these also works, harmlessly, where it is installed.
+
+vivv(*cases, **options) runs vivv into a temporary directory of the test and returns its
+vivv_map.testing.Run."""
+import hashlib
+import json
+import pathlib
+import shutil
+import sys
 import tempfile
 
 import pytest
@@ -29,6 +40,69 @@ def pytest_addoption(parser):
     parser.addini("vivv_cases", type="args", default=[],
                   help="glob patterns of vivv case files to collect as tests, one per claim")
     parser.addini("vivv_args", type="args", default=[], help="options for the vivv runs of collected case files")
+    parser.addini("vivv_cache", type="bool", default=False,
+                  help="reuse a collected case file's vivv run while nothing it is keyed by changed (--vivv-cache)")
+    parser.addoption("--vivv-cache", action="store_true", default=False,
+                     help="reuse a collected case file's vivv run from pytest's cache while the case file, the files "
+                          "its command names, vivv's binary, vivv_args and the interpreter are unchanged "
+                          "(--cache-clear forgets them)")
+
+
+# The opt-in result cache: a collected case file's report directory, kept in pytest's cache
+# (.pytest_cache/d/vivv/KEY) under a hash of what the verdicts follow from — the case file's bytes,
+# the bytes of every file its "command" names (a program, a module path given as an argument),
+# vivv's binary, the options and the interpreter that runs "python3". What the key cannot see — a
+# module the program imports without naming it, a file the case reads through another path — is
+# the user's to clear with --cache-clear. Only runs that produced verdicts for every case are kept:
+# a program that could not start (a missing module) is retried.
+def cache_key(case_path, options):
+    from .testing import find_vivv
+
+    digest = hashlib.sha256()
+
+    def add(label, data):
+        digest.update(label.encode() + b"\0" + (data if isinstance(data, bytes) else data.encode()) + b"\0")
+
+    case_bytes = case_path.read_bytes()
+    add("case", case_bytes)
+    try:
+        discretization = json.loads(case_bytes).get("discretization", {})
+        command = discretization.get("command", []) if isinstance(discretization, dict) else []
+    except (ValueError, AttributeError):
+        command = []
+    for argument in command if isinstance(command, list) else []:
+        named = case_path.parent / str(argument)
+        if isinstance(argument, str) and named.is_file():
+            add("file " + argument, named.read_bytes())
+    vivv = pathlib.Path(shutil.which(find_vivv()) or find_vivv())
+    add("vivv", vivv.read_bytes() if vivv.is_file() else str(vivv))
+    add("options", json.dumps(list(options)))
+    add("interpreter", sys.executable)
+    return digest.hexdigest()[:32]
+
+
+def cached_run(config, case_path, options, compute):
+    """compute(out) through the cache when it is on: (Run or exception, whether it came from the cache)."""
+    from .testing import Run
+
+    if not (config.getoption("vivv_cache") or config.getini("vivv_cache")):
+        return compute(None), False
+    cache = getattr(config, "cache", None)
+    if cache is None:
+        raise pytest.UsageError("--vivv-cache (or vivv_cache = true) keeps runs in pytest's cache, which "
+                                 "-p no:cacheprovider turned off")
+    key = cache_key(case_path, options)
+    kept = pathlib.Path(cache.mkdir("vivv")) / key
+    if (kept / "report.json").is_file() and (kept / "exit-code").is_file():
+        return Run(int((kept / "exit-code").read_text()), (kept / "console.txt").read_text(), kept), True
+    outcome = compute(None)
+    if not isinstance(outcome, Exception) and not outcome.could_not_run:
+        if kept.exists():
+            shutil.rmtree(kept)
+        shutil.copytree(outcome.out, kept)
+        (kept / "console.txt").write_text(outcome.console)
+        (kept / "exit-code").write_text(str(outcome.exit_code))
+    return outcome, False
 
 
 def pytest_collect_file(file_path, parent):
@@ -70,14 +144,19 @@ class VivvCaseFile(pytest.File):
             yield item
 
     def run(self):
-        """vivv run on this file, once: the Run, or the VivvError it raised."""
+        """vivv run on this file, once (or from the cache): the Run, or the VivvError it raised."""
         if not hasattr(self, "_outcome"):
-            factory = getattr(self.config, "_tmp_path_factory", None)  # pytest's tmp_path_factory
-            out = factory.mktemp("vivv-" + self.path.stem) if factory else tempfile.mkdtemp(prefix="vivv-")
-            try:
-                self._outcome = run_vivv(str(self.path), out=out, args=self.config.getini("vivv_args"))
-            except Exception as error:  # VivvError: refused, not started, beyond the timeout
-                self._outcome = error
+            options = self.config.getini("vivv_args")
+
+            def compute(_):
+                factory = getattr(self.config, "_tmp_path_factory", None)  # pytest's tmp_path_factory
+                out = factory.mktemp("vivv-" + self.path.stem) if factory else tempfile.mkdtemp(prefix="vivv-")
+                try:
+                    return run_vivv(str(self.path), out=out, args=options)
+                except Exception as error:  # VivvError: refused, not started, beyond the timeout
+                    return error
+
+            self._outcome, self.from_cache = cached_run(self.config, self.path, options, compute)
         return self._outcome
 
 
@@ -133,13 +212,20 @@ class VivvClaimItem(pytest.Item):
         if case in outcome.could_not_run:
             raise VivvClaimFailure(f"{case} could not run: {_shortened(outcome.could_not_run[case], 600)}")
         verdict = outcome.verdicts[case].get(self.name)
+        if verdict is not None and isinstance(outcome.claim(case, self.name).get("seconds"), (int, float)):
+            self.claim_seconds = outcome.claim(case, self.name)["seconds"]
+            self.user_properties.append(("vivv_seconds", self.claim_seconds))
+        if self.parent.from_cache:
+            self.user_properties.append(("vivv_cached", str(outcome.out)))
         if verdict in ("pass", "xpass"):  # an xpass: the item's strict xfail marker fails it
             return
+        where = f"\nreport: {outcome.out / 'report.html'}" + (
+            " (kept by --vivv-cache; --cache-clear recomputes it)" if self.parent.from_cache else "")
         if verdict == "xfail":  # the case's xfail: the failure it states (the item's marker reports it)
             raise VivvExpectedFailure(f"{case} / {self.name}: xfail, as the case states: "
                                    f"{_shortened(outcome.claim(case, self.name).get('explanation', ''))}")
         why = outcome.claim(case, self.name).get("explanation", "") if verdict is not None else "not in the report"
-        raise VivvClaimFailure(f"{case} / {self.name}: {verdict}: {_shortened(why, 600)}")
+        raise VivvClaimFailure(f"{case} / {self.name}: {verdict}: {_shortened(why, 600)}{where}")
 
     def repr_failure(self, excinfo):
         if isinstance(excinfo.value, VivvClaimFailure):
@@ -148,3 +234,17 @@ class VivvClaimItem(pytest.Item):
 
     def reportinfo(self):
         return self.path, None, f"{self.parent.case_name}::{self.name}"
+
+
+# JUnit (--junitxml) and --durations give a claim its own time: vivv's seconds for that claim (its
+# judgement and the sweep runs it was the first to need; report.json's claim "seconds"), not the
+# whole case's run that its file's first selected claim waited for. pytest's own measurement stays
+# in the item's user properties as "pytest_seconds".
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item, call):
+    outcome = yield
+    if isinstance(item, VivvClaimItem) and call.when == "call" and hasattr(item, "claim_seconds"):
+        report = outcome.get_result()
+        item.user_properties.append(("pytest_seconds", report.duration))
+        report.user_properties = list(item.user_properties)
+        report.duration = float(item.claim_seconds)

@@ -8,7 +8,10 @@
         assert not run.regressed          # no claim worse than in the baseline report
 
 vivv is found as the argument `vivv`, else the environment variable VIVV, else on PATH.
-Verdicts are read from the report.json vivv writes, never from its console.
+Verdicts are read from the report.json vivv writes, never from its console. vivv runs with the
+interpreter running this code first on PATH (a case's "python3" is that interpreter: a venv's,
+where vivv_map is installed) and, where vivv_map is used from the source tree, with its folder on
+PYTHONPATH: a program started by vivv imports the vivv_map its test imports.
 """
 import json
 import os
@@ -16,6 +19,7 @@ import pathlib
 import shlex
 import shutil
 import subprocess
+import sys
 import tempfile
 
 # After a timeout vivv gets SIGTERM, on which it ends the programs it started (their process groups
@@ -89,13 +93,14 @@ class Run:
         lines += [f"{case} / {claim}: regressed against the baseline: "
                   f"{_shortened(self.claim(case, claim)['baseline'].get('explanation', ''))}" for case, claim in self.regressed]
         lines += [f"{case}: could not run: {_shortened(message)}" for case, message in self.could_not_run.items()]
-        return "\n".join(lines) or "every claim passed"
+        return ("\n".join(lines) + f"\nreport: {self.out / 'report.html'}") if lines else "every claim passed"
 
 
 def assert_verdicts(run, expected):
     """Asserts that `run` gave the `expected` verdicts, {case: {claim: verdict}} or {case: verdict}
     (every claim of the case), with a short difference: one line per claim that differs, vivv's
-    reason beside it, and a case that could not run with its cause."""
+    reason beside it, a case that could not run with its cause, and the report's path."""
+    __tracebackhide__ = True  # pytest shows the caller's line and this message, not this function
     differences = []
     for case, wanted in expected.items():
         if case in run.could_not_run:
@@ -111,7 +116,7 @@ def assert_verdicts(run, expected):
                 why = run.claim(case, claim).get("explanation", "") if got is not None else "the case has no such claim"
                 differences.append(f"{case} / {claim}: expected {verdict}, got {got}: {_shortened(why)}")
     if differences:
-        raise AssertionError("verdicts differ:\n" + "\n".join(differences))
+        raise AssertionError("verdicts differ:\n" + "\n".join(differences) + f"\nreport: {run.out / 'report.html'}")
 
 
 def find_vivv(vivv=None):
@@ -120,6 +125,29 @@ def find_vivv(vivv=None):
         raise VivvError("vivv not found: pass vivv=PATH, set VIVV, or put vivv on PATH "
                         "(cmake --build build --target vivv builds build/harness/vivv)")
     return str(found)
+
+
+def vivv_environment(interpreter_folder, environment=None):
+    """The environment vivv runs in: `environment` (default os.environ) with `interpreter_folder`
+    first on PATH — a folder holding `python3` and `python`, each starting the interpreter running
+    this code (a venv's: a script that execs it, since a symlink elsewhere would lose the venv), so
+    a case's "command": ["python3", …] runs it and nothing else on PATH moves — and with the folder
+    holding vivv_map on PYTHONPATH when vivv_map is not installed (used from the source tree with
+    PYTHONPATH=python): the program imports the same vivv_map as the test."""
+    environment = dict(os.environ if environment is None else environment)
+    folder = pathlib.Path(interpreter_folder)
+    for name in ("python3", "python"):
+        script = folder / name
+        script.write_text(f"#!/bin/sh\nexec {shlex.quote(sys.executable)} \"$@\"\n")
+        script.chmod(0o755)
+    environment["PATH"] = os.pathsep.join([str(folder)] + [entry for entry in environment.get("PATH", "").split(
+        os.pathsep) if entry])
+    package_parent = pathlib.Path(__file__).resolve().parent.parent
+    if package_parent.name not in ("site-packages", "dist-packages"):
+        entries = [entry for entry in environment.get("PYTHONPATH", "").split(os.pathsep) if entry]
+        if str(package_parent) not in entries:
+            environment["PYTHONPATH"] = os.pathsep.join([str(package_parent)] + entries)
+    return environment
 
 
 def run_vivv(*cases, vivv=None, out=None, baseline=None, allow_process=True, args=(), timeout=3600):
@@ -137,10 +165,17 @@ def run_vivv(*cases, vivv=None, out=None, baseline=None, allow_process=True, arg
         command.append("--allow-process")
     if baseline is not None:
         command += ["--baseline", str(baseline)]
-    try:
-        process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    except OSError as error:  # not found, not executable
-        raise VivvError(f"vivv could not be started as {command[0]!r}: {error}") from None
+    with tempfile.TemporaryDirectory(prefix="vivv-interpreter-") as interpreter_folder:
+        try:
+            process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                       env=vivv_environment(interpreter_folder))
+        except OSError as error:  # not found, not executable
+            raise VivvError(f"vivv could not be started as {command[0]!r}: {error}") from None
+        return _finished(process, command, out, timeout)
+
+
+def _finished(process, command, out, timeout):
+    """The Run of a started vivv, or VivvError (exit 2 or 3, beyond the timeout)."""
     try:
         stdout, stderr = process.communicate(timeout=timeout)
     except subprocess.TimeoutExpired:
