@@ -81,6 +81,36 @@ FormulaSystemDefinition catalogue_twin(const std::string& name,
   return definition;
 }
 
+namespace {
+
+// The names a formula reads: plain names and indexed families (m in m[i]).
+void collect_names(const FormulaNode& node, std::set<std::string>& names) {
+  if (node.kind == FormulaNode::Kind::name || node.kind == FormulaNode::Kind::component) names.insert(node.text);
+  for (const FormulaNode& operand : node.operands) collect_names(operand, names);
+}
+
+// A formula system's parameter that L, its symmetry and L_d never name computes nothing: a
+// warning, naming it (a family once, by its name).
+void warn_of_unused_parameters(CaseSpec& spec) {
+  if (!spec.formula || spec.formula->recorded) return;
+  std::set<std::string> used;
+  collect_names(spec.formula->lagrangian, used);
+  for (const FormulaNode& component : spec.formula->symmetry) collect_names(component, used);
+  if (spec.discretization.expression_tree) collect_names(*spec.discretization.expression_tree, used);
+  std::set<std::string> warned;
+  for (const auto& [name, value] : spec.parameters) {
+    const std::string base = name.substr(0, name.find('['));
+    if (used.count(base) || !warned.insert(base).second) continue;
+    spec.warnings.push_back(
+        "system.params." + base + ": L never uses this parameter" +
+        (spec.discretization.expression_tree ? std::string(" (nor L_d, nor the symmetry)") : std::string(" (nor the symmetry)")) +
+        (spec.discretization.kind == "process" ? "; the program receives it in its greeting, vivv computes nothing with it"
+                                               : ": is it misspelt, or does L name another?"));
+  }
+}
+
+}  // namespace
+
 CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   Reader reader(json, file, "");
   CaseSpec spec;
@@ -342,6 +372,7 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   reader.finish();
   spec.decimals = reader.decimals();
   spec.written = reader.written();
+  warn_of_unused_parameters(spec);
   // What the run will hold depends on its discretizations, claims and steps, all read by now.
   check_memory(spec, file, spec.scalar, spec.digits);
   check_precision_options(spec, std::nullopt, std::nullopt);

@@ -104,6 +104,10 @@ struct CaseSpec {
   // A system written as a formula (its parameters are `parameters`); empty for the catalogue's.
   std::shared_ptr<const FormulaSystemDefinition> formula;
   std::vector<std::pair<std::string, std::string>> parameters;  // every parameter, defaults filled in
+  // What the case reads but nothing computes with: a formula system's parameter that neither L,
+  // its symmetry nor L_d names (a misspelt "mass" beside L's "m"). Said on the console and in the
+  // report; the run goes on (a process program receives every parameter in its greeting).
+  std::vector<std::string> warnings;
   std::vector<std::string> q, w;
   std::string final_time;  // "T"
   std::vector<int> steps;

@@ -323,21 +323,40 @@ std::string claim_section(const json& c, const json& claim, const std::string& k
       << escape(key) << "\">\n<h3>" << verdict_badge(verdict) << " " << escape(text_of(claim, "id"))
       << " <span class=\"small\">" << escape(text_of(c, "name")) << " &#183; "
       << escape(text_of(claim, "source")) << "</span></h3>\n";
-  // A passing claim's plot, series and evidence are collapsed (the findings row says what it
-  // showed; the default suite then prints in a few dozen pages, not 139); a claim that needs
-  // attention opens with them.
+  // Every claim's plot and facts are shown (the h² line a user came for, without a click); a
+  // passing claim's other figures, series, points and evidence are collapsed (the default suite
+  // then prints in far fewer pages), a claim that needs attention opens with them.
   const bool collapsed = verdict == "pass" || verdict == "xfail";
-  out << "<details class=\"claim-details\"" << (collapsed ? "" : " open")
-      << "><summary>plot, series, points and "
-      << "evidence</summary>\n";
   out << "<div class=\"claim-body\"><div>" << render_claim_plot(claim, key);
   bool any_zero = false;
-  for (const auto& s : claim.value("series", json::array()))
-    for (const auto& e : s.value("error", json::array()))
-      any_zero = any_zero || (e.is_string() && !log10_decimal(e.get<std::string>()));
+  std::string unmeasured;  // steps whose value was only recorded, not measured (undrawn)
+  for (const auto& s : claim.value("series", json::array())) {
+    const std::set<std::string> skipped = unmeasured_steps(claim, s);
+    const json h = s.value("h", json::array()), error = s.value("error", json::array());
+    for (std::size_t i = 0; i < h.size() && i < error.size(); ++i) {
+      if (h[i].is_string() && skipped.count(h[i].get<std::string>())) {
+        unmeasured += (unmeasured.empty() ? "" : ", ") + short_decimal(h[i].get<std::string>(), 4);
+        continue;
+      }
+      any_zero = any_zero || (error[i].is_string() && !log10_decimal(error[i].get<std::string>()));
+    }
+  }
+  if (!unmeasured.empty())
+    out << "<p class=\"note\" data-not-measured=\"1\">Not drawn: the drift at h = " << escape(unmeasured)
+        << " was not measured (too few returns of the motion in T, or an energy error at the rounding "
+           "floor: evidence per_step).</p>";
   if (any_zero)
     out << "<p class=\"note\">Errors that are exactly 0 have no logarithm: they are drawn on the "
            "dashed line at the bottom of the plot (the plot floor), not at their value.</p>";
+  out << "</div><div>\n<dl class=\"facts\"><dt>prediction</dt><dd>" << predicted_html(claim)
+      << " — " << escape(text_of(claim, "prediction")) << "</dd><dt>observed</dt><dd>"
+      << observed_html(claim) << "</dd><dt>verdict</dt><dd>" << verdict_badge(verdict) << " "
+      << escape(text_of(claim, "explanation")) << "</dd>";
+  if (!text_of(claim, "detection_limit").empty())
+    out << "<dt>detection limit</dt><dd>" << escape(text_of(claim, "detection_limit")) << "</dd>";
+  out << "</dl>\n</div></div>\n";
+  out << "<details class=\"claim-details\"" << (collapsed ? "" : " open")
+      << "><summary>more figures, series, points and evidence</summary>\n<div>";
   out << speed_map_figure(claim, key);
   if (const std::string time_plot = render_time_plot(claim, key); !time_plot.empty())
     out << "<figure class=\"time\">" << time_plot << "<figcaption>"
@@ -346,19 +365,12 @@ std::string claim_section(const json& c, const json& claim, const std::string& k
            "grows "
            "with t, a symplectic method's error stays in a band that shrinks with "
            "h.</figcaption></figure>";
-  out << "</div><div>\n<dl class=\"facts\"><dt>prediction</dt><dd>" << predicted_html(claim)
-      << " — " << escape(text_of(claim, "prediction")) << "</dd><dt>observed</dt><dd>"
-      << observed_html(claim) << "</dd><dt>verdict</dt><dd>" << verdict_badge(verdict) << " "
-      << escape(text_of(claim, "explanation")) << "</dd>";
-  if (!text_of(claim, "detection_limit").empty())
-    out << "<dt>detection limit</dt><dd>" << escape(text_of(claim, "detection_limit")) << "</dd>";
-  out << "</dl>\n";
   out << series_table(claim) << "\n";
   out << "<details><summary>points: h, error, used or dropped</summary>" << points_table(claim)
       << "</details>\n";
   out << "<details><summary>evidence</summary>"
       << value_html(claim.value("evidence", json::object())) << "</details>\n";
-  out << "</div></div></details></section>\n";
+  out << "</div></details></section>\n";
   return out.str();
 }
 
@@ -525,13 +537,19 @@ std::string render_html(const json& report) {
     if (!needs_attention(verdict)) continue;
     const json series = claim->value("series", json::array());
     const std::size_t decisive = claim->value("decisive_series", 0);
+    // One line: the verdict, observed against predicted, the sentence that matters; the whole
+    // explanation (every series' statistics) a click away.
     attention << "<li data-attention=\"" << escape(verdict) << "\" data-attention-claim=\""
               << escape(key) << "\">" << verdict_badge(verdict) << " <a href=\"#" << anchor << "\">"
               << escape(key) << "</a>";
-    if (decisive < series.size())
-      attention << " <span class=\"small\">decided by "
-                << escape(text_of(series[decisive], "label")) << "</span>";
-    attention << ": " << escape(text_of(*claim, "explanation")) << "</li>\n";
+    if (decisive < series.size() && series[decisive].value("observed_order", json()).is_number())
+      attention << " <span class=\"small\">observed " << order_html(series[decisive]["observed_order"], 3)
+                << " against " << predicted_html(series[decisive]) << "</span>";
+    else if (decisive < series.size())
+      attention << " <span class=\"small\">" << escape(text_of(series[decisive], "label")) << "</span>";
+    attention << ": " << escape(attention_sentence(*claim))
+              << " <details class=\"why\"><summary>why</summary>" << escape(text_of(*claim, "explanation"))
+              << "</details></li>\n";
   }
   if (!attention.str().empty())
     page << "<h2 id=\"attention\">Needs attention</h2>\n<p class=\"lede\">Every claim that did not "

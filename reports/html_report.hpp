@@ -21,6 +21,10 @@ namespace vivv {
 // The page for a report of schema report_schema.
 std::string render_html(const nlohmann::json& report);
 
+// The one sentence "Needs attention" shows for a claim that did not pass (plain text): its own
+// conclusion, what would decide it, or the decisive series' first clause (reports/html/attention.cpp).
+std::string attention_sentence(const nlohmann::json& claim);
+
 // The log-log plot of one claim (its "series"), as an <svg> element.
 std::string render_claim_plot(const nlohmann::json& claim, const std::string& key);
 

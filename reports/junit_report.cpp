@@ -67,6 +67,7 @@ std::string render_junit(const nlohmann::json& report) {
   // A refused case is one testcase with an error (no claim computed).
   const nlohmann::json refused = report.value("refused", nlohmann::json::array());
   const nlohmann::json seconds = report["run"].value("case_seconds", nlohmann::json::object());
+  const nlohmann::json claim_seconds = report["run"].value("claim_seconds", nlohmann::json::object());
   const nlohmann::json skipped_cases = report["run"].value("skipped_cases", nlohmann::json::array());
   // JUnit's words: a failing claim and an xpass (a known failure that went away) are failures,
   // an xfail is skipped with its reason.
@@ -99,7 +100,12 @@ std::string render_junit(const nlohmann::json& report) {
     for (const auto& claim : c["claims"]) {
       std::string verdict = claim["verdict"], summary_text = evidence_summary(claim);
       out << "    <testcase classname=\"" << xml_escape(name) << "\" name=\""
-          << xml_escape(claim["id"].get<std::string>()) << "\">\n";
+          << xml_escape(claim["id"].get<std::string>()) << "\"";
+      // The claim's own seconds (run.claim_seconds): its judgement and the runs it was the first to need.
+      const nlohmann::json own = claim_seconds.value(name, nlohmann::json::object()).value(
+          claim["id"].get<std::string>(), nlohmann::json());
+      if (own.is_number()) out << " time=\"" << format_number(own.get<double>(), 6) << "\"";
+      out << ">\n";
       if (verdict == "fail" || verdict == "inconclusive" || verdict == "error" ||
           verdict == "xpass") {
         // An inconclusive claim fails the run like a failure; its message says it is inconclusive.
@@ -107,6 +113,10 @@ std::string render_junit(const nlohmann::json& report) {
         std::string message = string_field(claim, "explanation");
         if (verdict == "inconclusive" && message.rfind("inconclusive:", 0) != 0)
           message = "inconclusive: " + message;
+        // A claim that also regressed says so: the verdict's type, both in the message.
+        if (claim.contains("baseline") && claim["baseline"].is_object() &&
+            claim["baseline"].value("status", std::string()) == "regressed")
+          message += "; also regressed against the baseline: " + string_field(claim["baseline"], "explanation");
         out << "      <" << element << " type=\"" << verdict << "\" message=\""
             << xml_escape(message) << "\">" << xml_escape(summary_text) << "</" << element << ">\n";
       } else if (regressed_only(claim)) {

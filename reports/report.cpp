@@ -110,6 +110,7 @@ nlohmann::json case_json(const CaseResult& result) {
     initial["w"].push_back(as_used("initial.w[" + std::to_string(i) + "]", spec.w[i]));
   }
   nlohmann::json claims = nlohmann::json::array();
+  nlohmann::json claim_seconds = nlohmann::json::object();
   for (const auto& claim : result.claims) {
     nlohmann::json c = {{"id", claim.id},
                         {"source", claim.source},
@@ -121,6 +122,7 @@ nlohmann::json case_json(const CaseResult& result) {
                         {"evidence", claim.evidence}};
     if (!claim.xfail_reason.empty()) c["xfail_reason"] = claim.xfail_reason;
     if (!claim.weakness.empty()) c["weakness"] = claim.weakness;
+    claim_seconds[claim.id] = claim.seconds;  // to the run block (assemble_report)
     nlohmann::json all_series = nlohmann::json::array();
     for (const auto& series : claim.series) all_series.push_back(series_json(series));
     c["series"] = all_series;
@@ -182,10 +184,12 @@ nlohmann::json case_json(const CaseResult& result) {
               {"del_allowed", result.derivative_check.del_allowed},
               {"holds", result.derivative_check.holds}}}}},
           {"seconds", result.seconds},
+          {"claim_seconds", claim_seconds},
           {"run_seconds", run_seconds(result)},
           {"cost", run_cost(result)},
           {"claims", claims}};
   if (!written.empty()) out["written"] = written;
+  if (!spec.warnings.empty()) out["warnings"] = spec.warnings;
   return out;
 }
 
@@ -242,6 +246,10 @@ nlohmann::json assemble_report(std::vector<nlohmann::json> cases, const RunInfo&
     if (c.contains("seconds")) {
       run_json["case_seconds"][c["name"].get<std::string>()] = c["seconds"];
       c.erase("seconds");
+    }
+    if (c.contains("claim_seconds")) {
+      if (!c["claim_seconds"].empty()) run_json["claim_seconds"][c["name"].get<std::string>()] = c["claim_seconds"];
+      c.erase("claim_seconds");
     }
     if (c.contains("run_seconds")) {
       if (!c["run_seconds"].empty())
@@ -443,7 +451,11 @@ static void write_claims_table(std::ostream& out, const nlohmann::json& report, 
         continue;
       }
       rows.push_back({c["name"], claim["id"],
-                      regressed ? std::string("regressed") : claim["verdict"].get<std::string>(),
+                      // A pass that regressed reads "regressed"; any other verdict keeps its
+                      // word beside it ("inconclusive, regressed"): neither hides the other.
+                      regressed ? (claim["verdict"] == "pass" ? std::string("regressed")
+                                                              : claim["verdict"].get<std::string>() + ", regressed")
+                                : claim["verdict"].get<std::string>(),
                       // An observed order only beside a predicted one: an identity claim's fitted
                       // defect order is in its explanation and the report, not an order verdict.
                       order_text(ordered ? claim.value("observed_order", nlohmann::json())

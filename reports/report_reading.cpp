@@ -146,6 +146,8 @@ nlohmann::json merge_reports(const std::vector<std::pair<std::string, nlohmann::
     const nlohmann::json case_seconds = source_run.value("case_seconds", nlohmann::json::object());
     for (const auto& [name, seconds] : case_seconds.items())
       run_json["case_seconds"][name] = seconds;
+    const nlohmann::json claim_seconds = source_run.value("claim_seconds", nlohmann::json::object());
+    for (const auto& [name, claims] : claim_seconds.items()) run_json["claim_seconds"][name] = claims;
     const nlohmann::json run_seconds = source_run.value("run_seconds", nlohmann::json::object());
     for (const auto& [name, runs] : run_seconds.items()) run_json["run_seconds"][name] = runs;
     const nlohmann::json case_paths = source_run.value("case_paths", nlohmann::json::object());

@@ -91,6 +91,10 @@ struct ClaimResult {
   // empty otherwise). Listed in the console beside failures; --baseline regresses a claim that
   // was not weak before.
   std::string weakness;
+  // Wall time of the claim's evaluation: its judgement and the sweep runs it was the first of the
+  // case's claims to need (a later claim reuses them); under --refine, summed over the rounds.
+  // In the report's run block (run.claim_seconds), which two runs may differ in.
+  double seconds = 0;
   std::vector<Series> series;  // series[0] is the claim's main measurement
   nlohmann::json evidence = nlohmann::json::object();
 };

@@ -214,6 +214,35 @@ BADGE_SCRIPT = """<script>
   }
   document.body.setAttribute("data-badges-wrapped", JSON.stringify(wrapped));
   document.body.setAttribute("data-claim-borders", JSON.stringify(borders));
+  // Text past the right margin (a long quoted request, an unbroken path): every text line's box
+  // against the page's width; and each claim's plot shown without a click (laid out, not folded).
+  const past = [], hidden = [];
+  try {
+    const margin = document.documentElement.clientWidth;
+    const walker = document.createTreeWalker(document.body, NodeFilter.SHOW_TEXT);
+    for (let node = walker.nextNode(); node; node = walker.nextNode()) {
+      if (!node.textContent.trim() || node.parentElement.closest("details:not([open]) > :not(summary)")) continue;
+      const range = document.createRange();
+      range.selectNodeContents(node);
+      for (const box of range.getClientRects())
+        if (box.right > margin + 0.5) {
+          const holder = node.parentElement;
+          past.push(holder.tagName.toLowerCase() + (holder.className ? "." + holder.className : "") + ": " +
+                    node.textContent.trim().slice(0, 80));
+          break;
+        }
+    }
+    for (const plot of document.querySelectorAll("svg[data-claim-plot]")) {
+      const box = plot.getBoundingClientRect();
+      // Inside a closed <details> Chromium may still lay it out (content-visibility): folded all the same.
+      const folded = plot.closest("details:not([open])") && !plot.closest("summary");
+      if (box.width < 1 || box.height < 1 || folded) hidden.push(plot.getAttribute("data-claim-plot"));
+    }
+  } catch (error) {
+    past.push("the measurement failed: " + error);
+  }
+  document.body.setAttribute("data-text-past-margin", JSON.stringify(past));
+  document.body.setAttribute("data-plots-hidden", JSON.stringify(hidden));
 })();
 </script>"""
 
@@ -238,6 +267,13 @@ def check_badges_inside_cells(binary, directory, problems):
             wrapped = re.search(r'data-badges-wrapped="([^"]*)"', dom)
             if wrapped and json.loads(html.unescape(wrapped.group(1))):
                 problems.append(f"at {width} px: verdict badges broken over lines: {html.unescape(wrapped.group(1))[:200]}")
+            for attribute, what in (("data-text-past-margin", "text past the right margin"),
+                                    ("data-plots-hidden", "claim plots not shown without a click")):
+                found = re.search(attribute + r'="([^"]*)"', dom)
+                if not found:
+                    problems.append(f"at {width} px: the layout measurement did not run")
+                elif json.loads(html.unescape(found.group(1))):
+                    problems.append(f"at {width} px: {what}: {html.unescape(found.group(1))[:400]}")
             borders = re.search(r'data-claim-borders="([^"]*)"', dom)
             borders = json.loads(html.unescape(borders.group(1))) if borders else {}
             passing = set(borders.get("pass", []))
@@ -259,11 +295,14 @@ def badge_self_test(binary):
                     'overflow-wrap: anywhere">inconclusive</span></div>'
                     '<section class="claim pass" style="border-left: 5px solid green">a</section>'
                     '<section class="claim inconclusive" style="border-left: 5px solid green">b</section>'
+                    '<p style="white-space: nowrap">' + 'request' * 400 + '</p>'
+                    '<details><summary>plot</summary><svg data-claim-plot="c/x" width="10" height="10"></svg></details>'
                     '</body></html>')
         problems = []
         check_badges_inside_cells(binary, work, problems)
     found = {what: any(what in p for p in problems) for what in ("outside their cells", "broken over lines",
-                                                                 "has the pass border")}
+                                                                 "has the pass border", "text past the right margin",
+                                                                 "claim plots not shown")}
     print("badge self-test:", ", ".join(f"{what}: {'found' if seen else 'NOT found'}" for what, seen in found.items()))
     return 0 if all(found.values()) else 1
 
@@ -330,6 +369,12 @@ def main(argv):
         anchor = re.search(r'<a href="#(claim-[0-9]+-[0-9]+)">', match.group(1))
         if not anchor or f'id="{anchor.group(1)}"' not in dom:
             problems.append(f"'Needs attention' entry without a working link: {match.group(1)[:120]}")
+        # One line per claim: the verdict, observed against predicted, one sentence; the whole
+        # explanation folded under "why".
+        shown = html.unescape(re.sub(r"<[^>]+>", "", re.sub(r'<details class="why">.*?</details>', "", match.group(1),
+                                                             flags=re.S)))
+        if len(shown) > 480:
+            problems.append(f"'Needs attention' entry of {len(shown)} characters, not one line: {shown[:120]}")
     badges = re.findall(r'<(\w+) class="verdict v-\w+" data-count="\w+"( href="#\w+")?', dom)
     if not badges or any(tag != "a" or not href for tag, href in badges):
         problems.append(f"verdict badges are not all links: {badges}")
@@ -386,7 +431,10 @@ def main(argv):
     points = sum(len(s["h"]) for case in report["cases"] for claim in case["claims"] for s in claim["series"])
     if len(csv_rows) != points:
         problems.append(f"report.csv has {len(csv_rows)} rows, report.json {points} points")
-    if report["cases"] and report["cases"][0].get("cost") and not any(row["L_evaluations"] for row in csv_rows):
+    # (vivv counts its own evaluations of L; a program's map has none of them to count)
+    vivv_computed = [case for case in report["cases"]
+                     if case.get("case_file", {}).get("discretization", {}).get("kind") != "process"]
+    if vivv_computed and vivv_computed[0].get("cost") and not any(row["L_evaluations"] for row in csv_rows):
         problems.append("report.csv carries no L evaluations")
     # Each case's facts name its discretization, and a formula's L and L_d as written.
     facts = attribute_values(dom, "data-fact")

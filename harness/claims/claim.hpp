@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "core/platform/text.hpp"
 #include "harness/context/case_context.hpp"
 #include "harness/verdicts/finite_measurement.hpp"
 #include "harness/verdicts/series.hpp"
@@ -50,29 +51,113 @@ struct Claim {
   template <LagrangianSystem System>
   static ClaimResult evaluate(const CaseContext<System>& context) {
     ClaimResult claim = result();
-    try {
-      Derived::measure(context, claim);
-    } catch (const MapDiverged& diverged) {
-      // The map left the problem's scale at one h: what was measured until then is not a verdict
-      // either way — an honest method may diverge at too large a step, a wrong one anywhere.
-      claim = result();
-      claim.verdict = "inconclusive";
-      claim.explanation = std::string("the run diverged at h = ") + diverged.h + ": " +
-                          diverged.what() +
-                          "; to decide: steps small enough for the map to stay within the "
-                          "problem's scale (larger step counts), or a map that does not diverge";
-      claim.evidence["divergence"] = {{"h", diverged.h}, {"message", diverged.what()}};
-    } catch (const NonFiniteMeasurement& non_finite) {
-      // A NaN or an infinity where a number was measured: no verdict either way.
-      errs(claim, "non_finite_measurement", non_finite, "none: the measurement was not a finite number");
-    } catch (const UnmeasurableJacobian& unmeasurable) {
-      // The measurement cannot be trusted: the claim errs, the case's other claims are judged.
-      errs(claim, "unmeasurable_jacobian", unmeasurable, "none: the map's Jacobian could not be measured");
-    } catch (const ClaimNotApplicable& refused) {
-      if (context.spec.claims.size() == 1) throw CaseError(context.spec.file, "claims", refused.what());
-      errs(claim, "refused", refused, "none: the claim does not apply to this case");
-      claim.explanation = std::string("refused (the case's other claims are judged): ") + refused.what();
+    // A run that leaves the problem's scale at one N is left out, and the claim is judged on the
+    // runs that finished (judge_finished_runs); finished_steps is the case's sweep again after.
+    struct Restore {
+      const CaseContext<System>& context;
+      ~Restore() { context.finished_steps.reset(); }
+    } restore{context};
+    std::vector<std::pair<int, std::string>> diverged_runs;  // (N, why), in the order met
+    for (;;) {
+      try {
+        Derived::measure(context, claim);
+        break;
+      } catch (const MapDiverged& diverged) {
+        const std::optional<int> N = context.step_count_of(diverged.h);
+        std::vector<int> finished;
+        for (int M : context.step_counts())
+          if (!N || M != *N) finished.push_back(M);
+        if (!N || finished.size() < 2) {
+          claim = diverged_without_verdict(context, diverged, diverged_runs);
+          return claim;
+        }
+        diverged_runs.emplace_back(*N, diverged.what());
+        context.finished_steps = finished;
+        claim = result();
+      } catch (const NonFiniteMeasurement& non_finite) {  // a NaN or ∞ where a number was measured
+        errs(claim, "non_finite_measurement", non_finite, "none: the measurement was not a finite number");
+        return claim;
+      } catch (const UnmeasurableJacobian& unmeasurable) {  // the other claims are judged
+        errs(claim, "unmeasurable_jacobian", unmeasurable, "none: the map's Jacobian could not be measured");
+        return claim;
+      } catch (const ClaimNotApplicable& refused) {
+        if (context.spec.claims.size() == 1) throw CaseError(context.spec.file, "claims", refused.what());
+        errs(claim, "refused", refused, "none: the claim does not apply to this case");
+        claim.explanation = std::string("refused (the case's other claims are judged): ") + refused.what();
+        return claim;
+      }
     }
+    if (!diverged_runs.empty()) judge_finished_runs(context, claim, diverged_runs);
+    return claim;
+  }
+
+  // A message quoted in an explanation: its start (what diverged) and its end (the number and
+  // the bound) kept, the middle — a request's long list of numbers — cut; the whole is in the
+  // evidence.
+  static std::string middle_cut(const std::string& text, std::size_t at_most = 320) {
+    if (text.size() <= at_most) return text;
+    std::size_t head = at_most / 2, tail = text.size() - at_most / 2;
+    while (head > 0 && (static_cast<unsigned char>(text[head]) & 0xC0) == 0x80) --head;
+    while (tail < text.size() && (static_cast<unsigned char>(text[tail]) & 0xC0) == 0x80) ++tail;
+    return text.substr(0, head) + " … " + text.substr(tail);
+  }
+
+  // A run of the sweep in words: "N = 400 (h = 0.0025)".
+  template <LagrangianSystem System>
+  static std::string run_words(const CaseContext<System>& context, int N) {
+    return "N = " + std::to_string(N) + " (h = " + to_decimal<typename System::Scalar>(context.final_time / N, 6) + ")";
+  }
+
+  // The claim judged on the runs that finished. A run that diverged at a step coarser than every
+  // finished one is an honest method beyond its stability (the finished, finer runs decide); a
+  // run that diverged at a step finer than one that finished is not what a convergent map does —
+  // its runs approach the flow as h falls — so such a claim does not pass: a failure of the
+  // finished runs stands, a pass becomes inconclusive.
+  template <LagrangianSystem System>
+  static void judge_finished_runs(const CaseContext<System>& context, ClaimResult& claim,
+                                  const std::vector<std::pair<int, std::string>>& diverged_runs) {
+    const std::vector<int>& finished = context.step_counts();
+    std::string finished_text, diverged_text;
+    for (int N : finished) finished_text += (finished_text.empty() ? "" : ", ") + std::to_string(N);
+    bool finer_diverged = false;
+    nlohmann::json record = nlohmann::json::array();
+    for (const auto& [N, why] : diverged_runs) {
+      diverged_text += (diverged_text.empty() ? "" : "; ") + run_words(context, N) + ": " + middle_cut(why);
+      finer_diverged = finer_diverged || N > finished.front();
+      record.push_back({{"N", N}, {"h", to_decimal<typename System::Scalar>(context.final_time / N, 8)}, {"message", why}});
+    }
+    claim.evidence["divergence"] = {{"diverged", record}, {"judged_on_steps", finished}};
+    const std::string judged = "judged on the runs that finished (N = " + finished_text + "); the run at " +
+                               diverged_text + " diverged";
+    if (finer_diverged && claim.verdict == "pass") {
+      claim.verdict = "inconclusive";
+      claim.explanation = "the runs that finished (N = " + finished_text + ") pass, but the map diverged at " +
+                          diverged_text + ", a step finer than one whose run finished: a convergent map's runs "
+                          "approach the flow as h falls; to decide: find why that run left the problem's scale "
+                          "(its message names the request), then run the sweep again";
+      return;
+    }
+    claim.explanation = judged + "; " + claim.explanation;
+  }
+
+  // No verdict: the run diverged where too few others finished to judge (or at a step outside the
+  // sweep): the advice names the step that diverged and the runs that had finished.
+  template <LagrangianSystem System>
+  static ClaimResult diverged_without_verdict(const CaseContext<System>& context, const MapDiverged& diverged,
+                                              const std::vector<std::pair<int, std::string>>& earlier) {
+    ClaimResult claim = result();
+    claim.verdict = "inconclusive";
+    std::string finished;
+    for (int N : context.step_counts())
+      if (context.step_count_of(diverged.h) != N) finished += (finished.empty() ? "" : ", ") + std::to_string(N);
+    claim.explanation = std::string("the run diverged at h = ") + diverged.h + ": " + middle_cut(diverged.what()) +
+                        (earlier.empty() ? std::string() : " (and earlier at " + run_words(context, earlier.front().first) + ")") +
+                        (finished.empty() ? std::string() : "; the runs at N = " + finished + " finished, too few to judge") +
+                        "; to decide: steps small enough for the map to stay within the problem's scale (step counts "
+                        "larger than those that diverged), or a map that does not diverge";
+    nlohmann::json record = nlohmann::json::array();
+    for (const auto& [N, why] : earlier) record.push_back({{"N", N}, {"message", why}});
+    claim.evidence["divergence"] = {{"h", diverged.h}, {"message", diverged.what()}, {"earlier", record}};
     return claim;
   }
 

@@ -248,7 +248,7 @@ std::string scaled_step_counts(const CaseContext<System>& context, const typenam
   using T = typename System::Scalar;
   const T factor = longer / context.final_time;
   std::string counts;
-  for (int N : context.spec.steps)
+  for (int N : context.step_counts())
     counts += (counts.empty() ? "" : ", ") +
               format_scalar(T(ceil(T(factor * T(N)))), 12);
   return " (N = " + counts + " for T = " + format_scalar(longer, 3) + ")";
@@ -274,7 +274,7 @@ Series energy_drift_series(const CaseContext<System>& context,
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const auto& run = runs[i];
     rows.push_back({{"h", to_decimal<T>(steps[i])},
-                    {"N", context.spec.steps[i]},
+                    {"N", context.step_counts()[i]},
                     {"status", run.status},
                     {"returns", run.returns},
                     {"return_period", to_decimal<T>(run.period, 8)},
@@ -289,7 +289,7 @@ Series energy_drift_series(const CaseContext<System>& context,
   }
   evidence["per_step"] = rows;
   const auto at = [&](std::size_t i) {
-    return "h = " + to_decimal<T>(steps[i], 6) + " (N = " + std::to_string(context.spec.steps[i]) +
+    return "h = " + to_decimal<T>(steps[i], 6) + " (N = " + std::to_string(context.step_counts()[i]) +
            ")";
   };
   // Fail: two consecutive h drift, and the drift keeps pace with the quantity's spread.
@@ -355,7 +355,7 @@ Series energy_drift_series(const CaseContext<System>& context,
         quantity + "; to decide: " + series.to_decide;
   } else if (last.status == "drift") {
     series.to_decide =
-        "a sweep that goes on to N = " + std::to_string(2 * context.spec.steps.back()) +
+        "a sweep that goes on to N = " + std::to_string(2 * context.step_counts().back()) +
         " (whether the trend falls with h like " + quantity + ", as a drift does)";
     series.explanation = quantity + ", averaged over returns, trends linearly by " +
                          format_scalar(last.drift) + " over T at the finest " + at(finest) +
@@ -389,7 +389,7 @@ std::string energy_drift_limit(const CaseContext<System>& context,
   const T threshold = 8 * run.noise();
   return "a linear drift of " + quantity + ", averaged over returns, above " +
          format_scalar(threshold) + " over T (" + format_scalar(T(threshold / context.final_time)) +
-         " per unit time) at N = " + std::to_string(context.spec.steps[i]) +
+         " per unit time) at N = " + std::to_string(context.step_counts()[i]) +
          ", falling with h like " + quantity + ", would have failed";
 }
 
@@ -425,8 +425,8 @@ Series energy_size_series(const CaseContext<System>& context,
   Floor<T> floor;
   floor.rounding = T(1000) * rounding;
   floor.reference = 0;  // E_k − E_0 involves no reference
-  floor.n_max = static_cast<long double>(context.spec.steps.back());
-  floor.scale = static_cast<long double>(rounding / (T(16) * context.working_epsilon() * T(context.spec.steps.back())));
+  floor.n_max = static_cast<long double>(context.step_counts().back());
+  floor.scale = static_cast<long double>(rounding / (T(16) * context.working_epsilon() * T(context.step_counts().back())));
   const int order = std::max(1, context.map_order() - (!context.map && !context.tq && context.scheme.mismatched ? 1 : 0));
   Series series = sweep_series(context, "max_k |E_k − E_0| over [0, T] (the energy error's size)",
                                largest_error, OrderPrediction{order, false}, floor);
@@ -441,7 +441,7 @@ Series energy_size_series(const CaseContext<System>& context,
       if (const std::string fails = ": fails"; series.explanation.size() >= fails.size() &&
                                                series.explanation.ends_with(fails))
         series.explanation.resize(series.explanation.size() - fails.size());
-      series.to_decide = "one more step count (N = " + std::to_string(2 * context.spec.steps.back()) +
+      series.to_decide = "one more step count (N = " + std::to_string(2 * context.step_counts().back()) +
                          ", the sweep extended or --refine) or a shorter T over which the runs stay together";
       series.explanation +=
           "; but the runs part from one h to the next: the two finest end " + format_scalar(parting, 3) +

@@ -123,7 +123,7 @@ void visit_map_trajectories(const CaseContext<System>& context, const std::strin
   using T = typename System::Scalar;
   const std::vector<T> steps = context.steps();
   for (std::size_t i = 0; i < steps.size(); ++i) {
-    const int N = context.spec.steps[i];
+    const int N = context.step_counts()[i];
     context.report(what + " over " + std::to_string(N) + " steps at h = " + to_decimal<T>(steps[i], 6));
     visit(steps[i], *shared_map_trajectory(context, steps[i], N));
   }
@@ -158,7 +158,7 @@ SweepRun<System> run_sweep(const CaseContext<System>& context, const DelScheme<t
   std::vector<T> steps = context.steps();
   for (std::size_t i = 0; i < steps.size(); ++i) {
     const T& h = steps[i];
-    int N = context.spec.steps[i];
+    int N = context.step_counts()[i];
     if (context.tq) {  // the TQ evolution from the exact initial state
       const State<T, System::dimension>& end = shared_tq_trajectory(context, h, N)->back();
       run.q_final.push_back(end.q);
@@ -325,9 +325,14 @@ struct GlobalOrderClaim : Claim<GlobalOrderClaim> {
                           ? max_norm<T, N>(Vector<T, N>(run.q_final.back() - run.q_final[run.q_final.size() - 2]))
                           : T(0);
     unresolved_motion_is_inconclusive(claim.series.front(), size, context.order_tolerance,
-                                      context.spec.steps.back(), one_step == "pass" || one_step == "inconclusive",
+                                      context.step_counts().back(), one_step == "pass" || one_step == "inconclusive",
                                       parting);
     conclude(claim);
+    // One step of order about 1 (global order 0) is another system, and local-order's words say
+    // so and where the error sits: global-order's failure says the same (evidence.one_step).
+    if (claim.verdict == "fail" && claim.evidence.contains("one_step") &&
+        claim.evidence["one_step"].contains("another_system"))
+      claim.explanation += ". " + claim.evidence["one_step"]["another_system"].get<std::string>();
   }
 
  private:
@@ -383,6 +388,12 @@ struct GlobalOrderClaim : Claim<GlobalOrderClaim> {
                                   {"measurement", context.map ? "local-order's: one step of the map from (q, p)"
                                                               : "one DEL step from exact q(t), q(t + h) against q(t + 2h)"},
                                   {"explanation", local.explanation}};
+    if (local.evidence.contains("error_location")) {
+      claim.evidence["one_step"]["error_location"] = local.evidence["error_location"];
+      const std::size_t another = local.explanation.find("One step errs like h^");
+      if (another != std::string::npos)
+        claim.evidence["one_step"]["another_system"] = local.explanation.substr(another);
+    }
     if (local.verdict != "fail") return;
     for (Series& series : local.series)
       if (series.holds && !*series.holds && !series.inconclusive) {

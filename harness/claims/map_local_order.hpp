@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "harness/claims/claim.hpp"
+#include "harness/claims/error_location.hpp"
 
 namespace vivv {
 
@@ -60,20 +61,29 @@ struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
     for (int k = 0; k < halvings; ++k) steps.push_back(steps.back() / 2);
     nlohmann::json starts = nlohmann::json::array();
     std::vector<std::string> defect_times;  // the states whose step failed its order
+    // Where the failing states' one-step errors sit (harness/claims/error_location.hpp): each
+    // coordinate's squared error at the finest step of the fit, and the lowest fitted order seen.
+    std::vector<double> defect_squared(static_cast<std::size_t>(context.n), 0.0);
+    double lowest_defect_order = INFINITY;
     for (int j = 0; j < states; ++j) {
       const T t = context.final_time * T(j) / T(states);
       const State<T, N> x = j == 0 ? context.initial : context.reference.advance(context.initial, t);
       const Vector<T, N> p = momentum(context.system, x.q, x.w);
       T scale = nan_max(max_norm<T, N>(x.q), max_norm<T, N>(p));
       std::vector<T> error, used_h;
+      std::vector<std::vector<double>> by_coordinate;  // per h (as used_h): each coordinate's error
+      std::vector<double> last_by_coordinate;
       const auto measure = [&](const T& h) -> std::optional<T> {
         context.report("local-order: one step from x(" + format_scalar(t, 4) + ") at h = " + to_decimal<T>(h, 6));
         const State<T, N> exact = context.reference.advance(x, h);
         const auto [q1, p1] = one_step(context, x, h);
         const Vector<T, N> p_exact = momentum(context.system, exact.q, exact.w);
         const T e = nan_max(max_norm<T, N>(Vector<T, N>(q1 - exact.q)), max_norm<T, N>(Vector<T, N>(p1 - p_exact)));
-        using std::isfinite;
+        using std::abs, std::isfinite;
         if (!isfinite(e)) return std::nullopt;
+        last_by_coordinate.assign(q1.size(), 0.0);
+        for (int i = 0; i < static_cast<int>(q1.size()); ++i)
+          last_by_coordinate[i] = static_cast<double>(nan_max(T(abs(T(q1[i] - exact.q[i]))), T(abs(T(p1[i] - p_exact[i])))));
         scale = nan_max(scale, nan_max(max_norm<T, N>(Vector<T, N>(exact.q - x.q)), max_norm<T, N>(Vector<T, N>(p_exact - p))));
         return e;
       };
@@ -83,6 +93,7 @@ struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
                                                                 format_scalar(h, 6) + ": increase the step counts");
         error.push_back(*e);
         used_h.push_back(h);
+        by_coordinate.push_back(last_by_coordinate);
         // Halvings below the case's sweep stop at the floor: past it they only show rounding.
         if (used_h.size() > context.steps().size() && error.back() <= floor_at(context, scale, h, &x).value()) break;
       }
@@ -97,12 +108,26 @@ struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
         if (!e) break;
         used_h.insert(used_h.begin(), h);
         error.insert(error.begin(), *e);
+        by_coordinate.insert(by_coordinate.begin(), last_by_coordinate);
       }
       const Floor<T> floor = floor_at(context, scale, used_h.back(), &x);
       Series series = make_series("|Φ_h(x) − φ_h(x)| from x(" + format_scalar(t, 4) + ")", used_h, error, floor,
                                   std::optional<double>(prediction.order), prediction.exact,
                                   context.order_tolerance, context.fit_options);
-      if (series.holds && !*series.holds && !series.inconclusive) defect_times.push_back(format_scalar(t, 4));
+      if (series.holds && !*series.holds && !series.inconclusive) {
+        defect_times.push_back(format_scalar(t, 4));
+        if (series.fit && series.fit->ok && !series.fit->used.empty()) {
+          lowest_defect_order = std::min(lowest_defect_order, series.fit->order);
+          int finest = series.fit->used.front();  // the used point of the smallest h
+          for (const int k : series.fit->used)
+            if (used_h[k] < used_h[finest]) finest = k;
+          const std::vector<double>& errors = by_coordinate[finest];
+          const double largest = *std::max_element(errors.begin(), errors.end());
+          if (largest > 0 && std::isfinite(largest))
+            for (std::size_t i = 0; i < errors.size() && i < defect_squared.size(); ++i)
+              defect_squared[i] += (errors[i] / largest) * (errors[i] / largest);
+        }
+      }
       claim.series.push_back(std::move(series));
       nlohmann::json q_text = nlohmann::json::array(), p_text = nlohmann::json::array();
       for (int i = 0; i < static_cast<int>(x.q.size()); ++i) q_text.push_back(to_decimal<T>(x.q[i], 8)), p_text.push_back(to_decimal<T>(p[i], 8));
@@ -131,10 +156,56 @@ struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
                                 ? std::string()
                                 : std::string(" (where its size is a narrower format's rounding, precision-leak "
                                               "names the format)"));
+      explain_location(context, claim, defect_squared, lowest_defect_order, map_words);
     }
   }
 
  private:
+  // Where a failing step's error sits, and what an error of order about 1 means: a map whose one
+  // step errs like h (global order 0) is consistent with another system than the case's. A wrong
+  // method of the right system errs like h^(p+1) with p ≥ 1 however wrong its coefficients are;
+  // an order below 1.5 says its vector field differs — masses, parameters, units or a force term
+  // the program has and the case has not (or reads otherwise).
+  template <LagrangianSystem System>
+  static void explain_location(const CaseContext<System>& context, ClaimResult& claim,
+                               const std::vector<double>& squared, double lowest_order, const std::string& map_words) {
+    std::vector<std::string> names;
+    if (context.spec.formula && context.spec.formula->coordinates.size() == squared.size()) {
+      names = context.spec.formula->coordinates;
+    } else {
+      for (std::size_t i = 0; i < squared.size(); ++i) names.push_back("q[" + std::to_string(i + 1) + "]");
+    }
+    const ErrorLocation where = locate_error(squared, names);
+    const std::string location = error_location_words(where);
+    // Below 0.5 the one-step error does not vanish like h at all: no system's map errs so (a term
+    // divided by h where it should be multiplied, a step size misread) — not "another system".
+    const bool inconsistent = lowest_order < 0.5;
+    const bool another_system = !inconsistent && lowest_order < 1.5;
+    claim.evidence["error_location"] = {{"by_coordinate", where.by_coordinate},
+                                        {"concentrated", where.concentrated},
+                                        {"another_system", another_system},
+                                        {"inconsistent", inconsistent},
+                                        {"lowest_fitted_order", std::isfinite(lowest_order) ? nlohmann::json(lowest_order)
+                                                                                           : nlohmann::json()}};
+    if (another_system) {
+      claim.explanation += ". One step errs like h^" + format_scalar(lowest_order, 3) +
+                           " (global order about " + format_scalar(std::max(0.0, lowest_order - 1), 2) + "): " +
+                           map_words + " steps another system than the case's — check its masses, parameters, "
+                           "units and forces against the case's";
+      if (!location.empty()) claim.explanation += "; the one-step error sits in " + location;
+      if (context.map && context.spec.discretization.kind == "process")
+        claim.explanation += " (the program's greeting carries the case's system and parameters: "
+                             "docs/process-protocol.md)";
+    } else if (inconsistent) {
+      claim.explanation += ". One step errs like h^" + format_scalar(lowest_order, 3) + ": " + map_words +
+                           " is not consistent with any system — its one-step error does not fall like h (a term "
+                           "divided by h where it should be multiplied, a step size misread)";
+      if (!location.empty()) claim.explanation += "; the one-step error sits in " + location;
+    } else if (!location.empty()) {
+      claim.explanation += "; the one-step error sits in " + location;
+    }
+  }
+
   // What the case's map is, in the words of the case.
   template <LagrangianSystem System>
   static std::string map_name(const CaseContext<System>& context) {

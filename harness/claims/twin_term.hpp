@@ -96,7 +96,7 @@ struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
     std::vector<TwinMeasurement<T>> measured;
     for (std::size_t i = 0; i < steps.size(); ++i) {
       const T& h = steps[i];
-      int steps = context.spec.steps[i];
+      int steps = context.step_counts()[i];
       T gap = 0, scale = 1;
       for (int k = 0; k <= steps; ++k) {
         gap = nan_max(gap, max_norm<T, N>(with.trajectories[i]->q[k] - without.trajectories[i]->q[k]));
@@ -129,7 +129,7 @@ struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
     std::vector<TwinMeasurement<T>> measured;
     for (std::size_t i = 0; i < steps.size(); ++i) {
       const T& h = steps[i];
-      int steps = context.spec.steps[i];
+      int steps = context.step_counts()[i];
       context.report("twin-term-invariance: " + std::to_string(steps) + " TQ steps with and without the twin term");
       // With the twin term and no past_discretization this is the case's own TQ sweep.
       const auto a = context.tq_past

@@ -45,7 +45,8 @@ int command_list() {
     std::cout << "\n";
   }
   std::cout << "  or your own: {\"name\", \"lagrangian\": a formula, \"coordinates\", \"velocities\", \"params\"}"
-               " (n = 1..4; optional \"symmetry\": the generator xi(q), a formula per coordinate)\n";
+               " (any n: names, or families such as {\"x\": [13, 3]} of up to 10^6 members; optional \"symmetry\": "
+               "the generator xi(q), a formula per coordinate)\n";
   std::cout << "discretizations (Q×Q rules):\n";
   for (const auto& rule : rule_names()) {
     std::cout << "  " << rule;

@@ -150,6 +150,8 @@ int command_run(const std::vector<std::string>& args, const std::string& command
     auto [it, fresh] = names.emplace(specs.back().name, file);
     if (!fresh)
       throw CaseError(file, "name", "'" + specs.back().name + "' is also the name of " + it->second);
+    // What the case reads and nothing computes with, said before the run (also with --quiet).
+    for (const auto& warning : specs.back().warnings) std::cerr << "vivv: warning: " << file << ": " << warning << "\n";
   }
   // The baseline is read and checked like any input of vivv report — schema, shape, every fit
   // and order verdict judged again by its claim's rules — before any case computes.

@@ -378,11 +378,30 @@ struct CaseContext {
                                                 orbit_size, d.process_precision == "double");
   }
 
+  // The step counts the claims walk: the case's sweep, or, while a claim is judged again on the
+  // runs that finished after one diverged (Claim::evaluate, harness/claims/claim.hpp), those.
+  mutable std::optional<std::vector<int>> finished_steps;
+  const std::vector<int>& step_counts() const { return finished_steps ? *finished_steps : spec.steps; }
+
   // h = T/N for every N of the sweep.
   std::vector<T> steps() const {
     std::vector<T> h;
-    for (int N : spec.steps) h.push_back(final_time / N);
+    for (int N : step_counts()) h.push_back(final_time / N);
     return h;
+  }
+
+  // The N of the sweep whose h = T/N a diverged run names ("0.0025", 6 significant digits).
+  std::optional<int> step_count_of(const std::string& h) const {
+    using std::abs;
+    T value;
+    try {
+      value = from_decimal<T>(h);
+    } catch (const std::exception&) {
+      return std::nullopt;
+    }
+    for (int N : step_counts())
+      if (abs(T(final_time / N - value)) <= T(1e-5) * abs(value)) return N;
+    return std::nullopt;
   }
   // The order r of the case's discrete Lagrangian(s), twin terms included: the
   // lower of the two sides. What lagrangian-order and legendre-order predict from.
@@ -417,9 +436,9 @@ struct CaseContext {
   Floor<T> floors() const {
     using std::max;
     const T scale = max(T(1), max(max_norm<T, N>(initial.q), max_norm<T, N>(initial.w)));
-    const T steps = T(spec.steps.back());
+    const T steps = T(step_counts().back());
     return {1000 * steps * working_epsilon() * scale, 1000 * reference.tolerance() * scale,
-            static_cast<long double>(scale), static_cast<long double>(spec.steps.back()),
+            static_cast<long double>(scale), static_cast<long double>(step_counts().back()),
             spec.discretization.process_precision == "double"};
   }
   T floor() const { return floors().value(); }

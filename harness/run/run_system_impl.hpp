@@ -5,7 +5,9 @@
 // dimension together); run_case.cpp only dispatches.
 #pragma once
 
+#include <chrono>
 #include <cmath>
+#include <map>
 
 #include "harness/claims/registry.hpp"
 #include "harness/run/derivative_check.hpp"
@@ -126,11 +128,16 @@ void run_on_system(const System& system, CaseSpec& spec, CaseResult& result, boo
       context.report("cross-checking L's derivatives against differences of its values");
       result.derivative_check = derivative_free_check(context);
     }
+    std::map<std::string, double> seconds_before;  // earlier --refine rounds' time, by claim
+    for (const auto& claim : result.claims) seconds_before[claim.id] = claim.seconds;
     result.claims.clear();
     for (const auto& id : spec.claims) {
       if (progress) progress(spec.name + ": claim " + id);
       try {
+        const auto started = std::chrono::steady_clock::now();
         result.claims.push_back(evaluate_claim(id, context));
+        result.claims.back().seconds =
+            seconds_before[id] + std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
       } catch (const SolverError& error) {
         SolverError explained(std::string(error.what()) + "; " + first_step_probe(context));
         explained.step_sizes_probed = true;

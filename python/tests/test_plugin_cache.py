@@ -13,9 +13,10 @@ PYTHON_DIR = pathlib.Path(__file__).resolve().parent.parent
 
 CASE = {"name": "my-verlet", "claims": ["global-order", "symplecticity"],
         "discretization": {"kind": "process", "command": ["python3", "verlet.py"]}}
-REPORT = {"cases": [{"name": "my-verlet", "claims": [
-    {"id": "global-order", "verdict": "pass", "seconds": 1.25},
-    {"id": "symplecticity", "verdict": "fail", "seconds": 7.5, "explanation": "not symplectic"}]}], "refused": []}
+REPORT = {"run": {"claim_seconds": {"my-verlet": {"global-order": 1.25, "symplecticity": 7.5}}},
+          "cases": [{"name": "my-verlet", "claims": [
+              {"id": "global-order", "verdict": "pass"},
+              {"id": "symplecticity", "verdict": "fail", "explanation": "not symplectic"}]}], "refused": []}
 
 
 def project(tmp_path):

@@ -212,9 +212,10 @@ class VivvClaimItem(pytest.Item):
         if case in outcome.could_not_run:
             raise VivvClaimFailure(f"{case} could not run: {_shortened(outcome.could_not_run[case], 600)}")
         verdict = outcome.verdicts[case].get(self.name)
-        if verdict is not None and isinstance(outcome.claim(case, self.name).get("seconds"), (int, float)):
-            self.claim_seconds = outcome.claim(case, self.name)["seconds"]
-            self.user_properties.append(("vivv_seconds", self.claim_seconds))
+        seconds = outcome.report.get("run", {}).get("claim_seconds", {}).get(case, {}).get(self.name)
+        if isinstance(seconds, (int, float)):
+            self.claim_seconds = seconds
+            self.user_properties.append(("vivv_seconds", seconds))
         if self.parent.from_cache:
             self.user_properties.append(("vivv_cached", str(outcome.out)))
         if verdict in ("pass", "xpass"):  # an xpass: the item's strict xfail marker fails it
@@ -237,7 +238,7 @@ class VivvClaimItem(pytest.Item):
 
 
 # JUnit (--junitxml) and --durations give a claim its own time: vivv's seconds for that claim (its
-# judgement and the sweep runs it was the first to need; report.json's claim "seconds"), not the
+# judgement and the sweep runs it was the first to need; report.json's run.claim_seconds), not the
 # whole case's run that its file's first selected claim waited for. pytest's own measurement stays
 # in the item's user properties as "pytest_seconds".
 @pytest.hookimpl(hookwrapper=True)

@@ -22,7 +22,8 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
   std::vector<PlotSeries> all;
   const json series_list = claim.value("series", json::array());
   for (std::size_t i = 0; i < series_list.size(); ++i)
-    all.push_back(plot_series(series_list[i], series_colors[i % series_colors.size()]));
+    all.push_back(plot_series(series_list[i], series_colors[i % series_colors.size()],
+                              unmeasured_steps(claim, series_list[i])));
 
   // An identity's or conserved quantity's tolerance at each h (evidence per_step), drawn as the
   // line the values must stay below.
@@ -236,6 +237,11 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
   std::ostringstream legend;
   legend << "<ul class=\"legend\" data-legend-for=\"" << escape(key) << "\">";
   bool any_predicted = false;
+  // global-order draws its global series and the one step it includes on one axis: each says
+  // which it is (a one-step error is one order higher than the global one).
+  const auto one_step = [](const PlotSeries& s) { return s.label.rfind("one step: ", 0) == 0; };
+  const bool mixed = std::any_of(all.begin(), all.end(), one_step) &&
+                     !std::all_of(all.begin(), all.end(), one_step);
   for (const auto& s : all) {
     std::string fit = s.per_step ? std::string("judged against its tolerance at each h (no order)")
                       : s.order
@@ -246,6 +252,9 @@ std::string render_claim_plot(const json& claim, const std::string& key) {
     any_predicted = any_predicted || s.predicted.has_value();
     if (s.holds) fit += *s.holds ? " — holds" : s.inconclusive ? " — inconclusive" : " — fails";
     legend << "<li><span class=\"swatch\" style=\"background:" << s.color << "\"></span>"
+           << (!mixed      ? std::string()
+               : one_step(s) ? std::string("<b>one step</b> (the local error from a state of the orbit): ")
+                             : std::string("<b>global</b> (the error after N steps, at T): "))
            << escape(s.label) << " <span class=\"small\">" << escape(fit) << "</span></li>";
   }
   if (!baselines.empty())

@@ -30,7 +30,11 @@ pre { background: var(--panel); padding: 8px 10px; overflow-x: auto; border-radi
 .note-cell { font-size: 12px; color: var(--muted); }
 .summary .verdict { font-size: 15px; padding: 4px 14px; }
 table.findings .verdict { white-space: nowrap; font-size: 11.5px; padding: 1px 6px; letter-spacing: 0; }
-.attention li { margin: 5px 0; }
+.attention li { margin: 5px 0; overflow-wrap: anywhere; }
+.attention li .verdict { white-space: nowrap; }
+details.why { display: inline; font-size: 12px; color: var(--muted); }
+details.why[open] { display: block; margin: 2px 0 6px 18px; }
+dl.facts dd, p.note, .lede, details pre, table.findings td { overflow-wrap: anywhere; }
 ul.legend { list-style: none; padding: 0; margin: 2px 0 8px 72px; max-width: 560px; font-size: 13px; }
 ul.legend li { margin: 2px 0; overflow-wrap: anywhere; }
 table { border-collapse: collapse; }

@@ -55,7 +55,23 @@ struct PlotSeries {
   bool per_step = false;
 };
 
-inline PlotSeries plot_series(const json& series, const std::string& color) {
+// The steps at which a series' value was not measured, only recorded as 0: energy-behaviour's
+// drift where the run had too few returns of the motion ("short") or its energy error sat at the
+// rounding floor ("floor") — evidence.per_step's status. Such a point is not drawn (a 0 there is no
+// measurement of a drift of 0); the page says so under the plot.
+inline std::set<std::string> unmeasured_steps(const json& claim, const json& series) {
+  std::set<std::string> steps;
+  if (text_of(series, "rule") != "energy-drift") return steps;
+  const json evidence = claim.value("evidence", json::object());
+  if (!evidence.is_object()) return steps;
+  for (const auto& row : evidence.value("per_step", json::array()))
+    if (row.is_object() && (text_of(row, "status") == "short" || text_of(row, "status") == "floor"))
+      steps.insert(text_of(row, "h"));
+  return steps;
+}
+
+inline PlotSeries plot_series(const json& series, const std::string& color,
+                              const std::set<std::string>& unmeasured = {}) {
   PlotSeries out;
   out.label = text_of(series, "label");
   out.color = color;
@@ -75,6 +91,7 @@ inline PlotSeries plot_series(const json& series, const std::string& color) {
     point.index = static_cast<int>(i);
     point.h = h[i].get<std::string>();
     point.error = error[i].get<std::string>();
+    if (unmeasured.count(point.h)) continue;  // not measured: no point, not a 0
     auto x = log10_decimal(point.h);
     if (!x) continue;  // a non-positive step cannot be placed on a log axis
     point.x = *x;
