@@ -32,6 +32,13 @@ struct ClaimNotApplicable : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A run of the sweep that left the problem's scale (MapDiverged): its N, its h as the map wrote
+// it, and why.
+struct DivergedRun {
+  int N = 0;
+  std::string h, why;
+};
+
 template <class Derived>
 struct Claim {
   // Whether a failure of the claim is an order its series' fit shows (so that a known failure
@@ -57,7 +64,7 @@ struct Claim {
       const CaseContext<System>& context;
       ~Restore() { context.finished_steps.reset(); }
     } restore{context};
-    std::vector<std::pair<int, std::string>> diverged_runs;  // (N, why), in the order met
+    std::vector<DivergedRun> diverged_runs;  // in the order met
     for (;;) {
       try {
         Derived::measure(context, claim);
@@ -71,7 +78,7 @@ struct Claim {
           claim = diverged_without_verdict(context, diverged, diverged_runs);
           return claim;
         }
-        diverged_runs.emplace_back(*N, diverged.what());
+        diverged_runs.push_back({*N, diverged.h, diverged.what()});
         context.finished_steps = finished;
         claim = result();
       } catch (const NonFiniteMeasurement& non_finite) {  // a NaN or ∞ where a number was measured
@@ -115,13 +122,13 @@ struct Claim {
   // finished runs stands, a pass becomes inconclusive.
   template <LagrangianSystem System>
   static void judge_finished_runs(const CaseContext<System>& context, ClaimResult& claim,
-                                  const std::vector<std::pair<int, std::string>>& diverged_runs) {
+                                  const std::vector<DivergedRun>& diverged_runs) {
     const std::vector<int>& finished = context.step_counts();
     std::string finished_text, diverged_text;
     for (int N : finished) finished_text += (finished_text.empty() ? "" : ", ") + std::to_string(N);
     bool finer_diverged = false;
     nlohmann::json record = nlohmann::json::array();
-    for (const auto& [N, why] : diverged_runs) {
+    for (const auto& [N, h, why] : diverged_runs) {
       diverged_text += (diverged_text.empty() ? "" : "; ") + run_words(context, N) + ": " + middle_cut(why);
       finer_diverged = finer_diverged || N > finished.front();
       record.push_back({{"N", N}, {"h", to_decimal<typename System::Scalar>(context.final_time / N, 8)}, {"message", why}});
@@ -140,24 +147,28 @@ struct Claim {
     claim.explanation = judged + "; " + claim.explanation;
   }
 
-  // No verdict: the run diverged where too few others finished to judge (or at a step outside the
-  // sweep): the advice names the step that diverged and the runs that had finished.
+  // No verdict: the runs diverged where too few others are left to judge (or at a step outside the
+  // sweep): the first divergence quoted, every step that diverged and what is left named.
   template <LagrangianSystem System>
   static ClaimResult diverged_without_verdict(const CaseContext<System>& context, const MapDiverged& diverged,
-                                              const std::vector<std::pair<int, std::string>>& earlier) {
+                                              std::vector<DivergedRun> runs) {
     ClaimResult claim = result();
     claim.verdict = "inconclusive";
-    std::string finished;
+    const std::optional<int> last = context.step_count_of(diverged.h);
+    runs.push_back({last.value_or(0), diverged.h, diverged.what()});
+    std::string left, steps;
     for (int N : context.step_counts())
-      if (context.step_count_of(diverged.h) != N) finished += (finished.empty() ? "" : ", ") + std::to_string(N);
-    claim.explanation = std::string("the run diverged at h = ") + diverged.h + ": " + middle_cut(diverged.what()) +
-                        (earlier.empty() ? std::string() : " (and earlier at " + run_words(context, earlier.front().first) + ")") +
-                        (finished.empty() ? std::string() : "; the runs at N = " + finished + " finished, too few to judge") +
+      if (last != N) left += (left.empty() ? "" : ", ") + std::to_string(N);
+    for (const auto& run : runs)
+      if (run.N > 0) steps += (steps.empty() ? "" : ", ") + run_words(context, run.N);
+    claim.explanation = "the run diverged at h = " + runs.front().h + ": " + middle_cut(runs.front().why) +
+                        (runs.size() > 1 ? "; runs diverged at " + steps : std::string()) +
+                        (left.empty() ? std::string() : "; the other step counts (N = " + left + ") are too few to judge") +
                         "; to decide: steps small enough for the map to stay within the problem's scale (step counts "
                         "larger than those that diverged), or a map that does not diverge";
     nlohmann::json record = nlohmann::json::array();
-    for (const auto& [N, why] : earlier) record.push_back({{"N", N}, {"message", why}});
-    claim.evidence["divergence"] = {{"h", diverged.h}, {"message", diverged.what()}, {"earlier", record}};
+    for (const auto& run : runs) record.push_back({{"N", run.N}, {"h", run.h}, {"message", run.why}});
+    claim.evidence["divergence"] = {{"h", runs.front().h}, {"message", runs.front().why}, {"diverged", record}};
     return claim;
   }
 

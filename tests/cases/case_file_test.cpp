@@ -116,13 +116,13 @@ TEST(CaseFile, AnExpressionLdNamesAParameterArraysMembers) {
 // A parameter that neither L, its symmetry nor L_d names is a warning naming it (a family once);
 // one that L_d alone names is used; a catalogue system's are never warned of.
 TEST(CaseFile, AParameterNothingNamesIsWarnedOf) {
-  nlohmann::json json = nlohmann::json::parse(R"({
+  nlohmann::json json = nlohmann::json::parse(R"json({
     "name": "c", "system": {"name": "two-masses", "coordinates": [{"x": [2]}], "velocities": [{"v": [2]}],
                             "params": {"m": ["1", "2"], "mass": "3", "c": ["1", "1"]},
                             "lagrangian": "sum(i = 1..2, m[i]*v[i]^2)/2 - (x[2] - x[1])^2/2"},
     "initial": {"q": ["0", "1"], "w": ["0.1", "0"]}, "T": "1", "steps": [8, 16, 32],
     "discretization": {"kind": "expression", "order": 2, "L_d": "h*L((qb + qe)/2, (qe - qb)/h)"},
-    "claims": ["global-order"]})");
+    "claims": ["global-order"]})json");
   CaseSpec spec = parse_case(json, "case.json");
   ASSERT_EQ(spec.warnings.size(), 2u);
   EXPECT_NE(spec.warnings[0].find("system.params.c: L never uses this parameter"), std::string::npos)
