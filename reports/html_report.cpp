@@ -11,6 +11,7 @@
 #include "cases/case_file.hpp"
 #include "reports/html/page_style.hpp"
 #include "reports/html/plot_frame.hpp"
+#include "reports/html/verdict_text.hpp"
 #include "reports/report.hpp"
 #include "reports/report_text.hpp"
 
@@ -19,37 +20,6 @@ namespace vivv {
 using namespace html;
 
 namespace {
-
-// A decimal string shortened, with the full value as a tooltip.
-std::string decimal_html(const std::string& decimal) {
-  std::string shown = short_decimal(decimal);
-  if (shown == decimal) return escape(decimal);
-  return "<span class=\"num\" title=\"" + escape(decimal) + "\">" + escape(shown) + "</span>";
-}
-
-std::string verdict_badge(const std::string& verdict) {
-  std::string mark = verdict == "pass"           ? "&#10003; pass"
-                     : verdict == "fail"         ? "&#10007; FAIL"
-                     : verdict == "xfail"        ? "&#8856; xfail"
-                     : verdict == "xpass"        ? "&#10007; XPASS"
-                     : verdict == "inconclusive" ? "&#63; inconclusive"
-                                                 : "&#9888; ERROR";
-  return "<span class=\"verdict v-" + escape(verdict) + "\" data-verdict=\"" + escape(verdict) +
-         "\">" + mark + "</span>";
-}
-
-std::string order_html(const json& value, int digits = 4) {
-  return value.is_number() ? format_number(value.get<double>(), digits) : "&#8212;";
-}
-
-// "≥ 2" for a lower bound, "= 2 (exact)" for an exact order, "—" for none.
-std::string predicted_html(const json& claim) {
-  const json predicted = claim.value("predicted_order", json());
-  if (!predicted.is_number()) return "<span class=\"small\">(no order)</span>";
-  return "order " + std::string(claim.value("exact_order", false) ? "= " : "&#8805; ") +
-         format_number(predicted.get<double>(), 4) +
-         (claim.value("exact_order", false) ? " <span class=\"small\">(exact)</span>" : "");
-}
 
 // The largest of a list of measured errors (decimal strings), or what their zeros mean.
 std::string largest_error_html(const json& errors, const std::string& verdict) {
@@ -535,21 +505,7 @@ std::string render_html(const json& report) {
                 << "\">" << escape(key) << "</a>: against the baseline: "
                 << escape(text_of((*claim)["baseline"], "explanation")) << "</li>\n";
     if (!needs_attention(verdict)) continue;
-    const json series = claim->value("series", json::array());
-    const std::size_t decisive = claim->value("decisive_series", 0);
-    // One line: the verdict, observed against predicted, the sentence that matters; the whole
-    // explanation (every series' statistics) a click away.
-    attention << "<li data-attention=\"" << escape(verdict) << "\" data-attention-claim=\""
-              << escape(key) << "\">" << verdict_badge(verdict) << " <a href=\"#" << anchor << "\">"
-              << escape(key) << "</a>";
-    if (decisive < series.size() && series[decisive].value("observed_order", json()).is_number())
-      attention << " <span class=\"small\">observed " << order_html(series[decisive]["observed_order"], 3)
-                << " against " << predicted_html(series[decisive]) << "</span>";
-    else if (decisive < series.size())
-      attention << " <span class=\"small\">" << escape(text_of(series[decisive], "label")) << "</span>";
-    attention << ": " << escape(attention_sentence(*claim))
-              << " <details class=\"why\"><summary>why</summary>" << escape(text_of(*claim, "explanation"))
-              << "</details></li>\n";
+    attention << attention_line(*claim, key, anchor);
   }
   if (!attention.str().empty())
     page << "<h2 id=\"attention\">Needs attention</h2>\n<p class=\"lede\">Every claim that did not "

@@ -25,6 +25,10 @@ std::string render_html(const nlohmann::json& report);
 // conclusion, what would decide it, or the decisive series' first clause (reports/html/attention.cpp).
 std::string attention_sentence(const nlohmann::json& claim);
 
+// One <li> of "Needs attention" for a claim that did not pass: its badge and link, observed against
+// predicted, attention_sentence, and the whole explanation folded under "why".
+std::string attention_line(const nlohmann::json& claim, const std::string& key, const std::string& anchor);
+
 // The log-log plot of one claim (its "series"), as an <svg> element.
 std::string render_claim_plot(const nlohmann::json& claim, const std::string& key);
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "reports/html/plot_frame.hpp"
+#include "reports/html/verdict_text.hpp"
 #include "reports/html_report.hpp"
 #include "reports/report_text.hpp"
 
@@ -58,6 +59,21 @@ std::string attention_sentence(const json& claim) {
   if (decisive < series.size() && !text_of(series[decisive], "explanation").empty())
     return clipped(first_clause(text_of(series[decisive], "explanation")), 240);
   return clipped(first_clause(explanation), 240);
+}
+
+std::string attention_line(const json& claim, const std::string& key, const std::string& anchor) {
+  const std::string verdict = text_of(claim, "verdict");
+  const json series = claim.value("series", json::array());
+  const std::size_t decisive = claim.value("decisive_series", 0);
+  std::string line = "<li data-attention=\"" + escape(verdict) + "\" data-attention-claim=\"" + escape(key) + "\">" +
+                     verdict_badge(verdict) + " <a href=\"#" + anchor + "\">" + escape(key) + "</a>";
+  if (decisive < series.size() && series[decisive].value("observed_order", json()).is_number())
+    line += " <span class=\"small\">observed " + order_html(series[decisive]["observed_order"], 3) + " against " +
+            predicted_html(series[decisive]) + "</span>";
+  else if (decisive < series.size())
+    line += " <span class=\"small\">" + escape(text_of(series[decisive], "label")) + "</span>";
+  return line + ": " + escape(attention_sentence(claim)) + " <details class=\"why\"><summary>why</summary>" +
+         escape(text_of(claim, "explanation")) + "</details></li>\n";
 }
 
 }  // namespace vivv
