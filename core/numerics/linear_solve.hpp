@@ -22,32 +22,48 @@ bool solve_linear(const Matrix<T, m, m>& matrix, const Vector<T, m>& right, Vect
   solution = lu.solve(right);
   return true;
 }
+// A sparse LU kept for several right-hand sides (symplecticity's probes solve with one matrix
+// many times); factor() is false for a singular matrix, by the pivot test of solve_linear.
+template <class T>
+class SparseFactorization {
+ public:
+  bool factor(const Eigen::SparseMatrix<T>& sparse, const T& threshold) {
+    using std::abs;
+    Eigen::SparseMatrix<T> matrix = sparse;
+    matrix.makeCompressed();
+    lu_.analyzePattern(matrix);
+    lu_.factorize(matrix);
+    if (lu_.info() != Eigen::Success) return false;
+    // U's diagonal sits in the supernodes of L's storage (as in SparseLU::absDeterminant).
+    const auto& supernodes = lu_.matrixL().m_mapL;
+    T largest = 0, smallest = -1;
+    for (Eigen::Index j = 0; j < matrix.cols(); ++j) {
+      T pivot = 0;
+      for (typename std::decay_t<decltype(supernodes)>::InnerIterator it(supernodes, j); it; ++it)
+        if (it.index() == j) {
+          pivot = abs(it.value());
+          break;
+        }
+      largest = std::max(largest, pivot);
+      smallest = smallest < 0 ? pivot : std::min(smallest, pivot);
+    }
+    return largest > 0 && smallest > threshold * largest;
+  }
+  // After a factor() that returned true.
+  Vector<T, any_size> solve(const Vector<T, any_size>& right) const { return lu_.solve(right); }
+  bool solved() const { return lu_.info() == Eigen::Success; }
+
+ private:
+  Eigen::SparseLU<Eigen::SparseMatrix<T>, Eigen::COLAMDOrdering<int>> lu_;
+};
+
 template <class T, int m>
 bool solve_linear(const Eigen::SparseMatrix<T>& sparse, const Vector<T, m>& right, Vector<T, m>& solution,
                   const T& threshold) {
-  using std::abs;
-  Eigen::SparseMatrix<T> matrix = sparse;
-  matrix.makeCompressed();
-  Eigen::SparseLU<Eigen::SparseMatrix<T>, Eigen::COLAMDOrdering<int>> lu;
-  lu.analyzePattern(matrix);
-  lu.factorize(matrix);
-  if (lu.info() != Eigen::Success) return false;
-  // U's diagonal sits in the supernodes of L's storage (as in SparseLU::absDeterminant).
-  const auto& supernodes = lu.matrixL().m_mapL;
-  T largest = 0, smallest = -1;
-  for (Eigen::Index j = 0; j < matrix.cols(); ++j) {
-    T pivot = 0;
-    for (typename std::decay_t<decltype(supernodes)>::InnerIterator it(supernodes, j); it; ++it)
-      if (it.index() == j) {
-        pivot = abs(it.value());
-        break;
-      }
-    largest = std::max(largest, pivot);
-    smallest = smallest < 0 ? pivot : std::min(smallest, pivot);
-  }
-  if (!(largest > 0) || !(smallest > threshold * largest)) return false;
+  SparseFactorization<T> lu;
+  if (!lu.factor(sparse, threshold)) return false;
   solution = lu.solve(right);
-  return lu.info() == Eigen::Success;
+  return lu.solved();
 }
 
 }  // namespace vivv

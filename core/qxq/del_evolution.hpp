@@ -103,6 +103,36 @@ auto del_trajectory(const System& system, const DelScheme<typename System::Scala
   return trajectory;
 }
 
+// The q' with p_begin[future](q, q') = p, by Newton from `guess` to full convergence; a failure
+// is a SolverError naming `what`. Sparse where L is (as del_step).
+template <LagrangianSystem System>
+auto next_configuration(const System& system, const QxQDiscretization<typename System::Scalar>& future,
+                        const VectorOf<System>& q, const VectorOf<System>& p, VectorOf<System> guess,
+                        const typename System::Scalar& h, const std::string& what) {
+  using T = typename System::Scalar;
+  constexpr int n = System::dimension;
+  if constexpr (SparselyDifferentiated<System>) {
+    if (sparse_path_applies(system, future)) {
+      auto report = newton_solve<T, n, Eigen::SparseMatrix<T>>(
+          guess, [&](const Vector<T, n>& x, Vector<T, n>& residual, Eigen::SparseMatrix<T>& jacobian) {
+            auto legendre = sparse_begin_momentum(system, future, q, x, h);
+            residual = legendre.p_begin - p;
+            jacobian = std::move(legendre.dp_begin_dq_e);
+          });
+      require_converged(report, what);
+      return guess;
+    }
+  }
+  auto report = newton_solve<T, n>(
+      guess, [&](const Vector<T, n>& x, Vector<T, n>& residual, Matrix<T, n, n>& jacobian) {
+        auto legendre = begin_momentum(system, future, q, x, h);
+        residual = legendre.p_begin - p;
+        jacobian = legendre.dp_begin_dq_e;
+      });
+  require_converged(report, what);
+  return guess;
+}
+
 // q_1 from the discrete Legendre transform: p_begin[future](q_0, q_1) = p_0,
 // by Newton from q_0 + h·w_0.
 template <LagrangianSystem System>
@@ -110,29 +140,9 @@ auto start_from_momentum(const System& system, const QxQDiscretization<typename 
                          const VectorOf<System>& q0, const VectorOf<System>& w0,
                          const typename System::Scalar& h) {
   using T = typename System::Scalar;
-  constexpr int n = System::dimension;
-  Vector<T, n> p0 = momentum(system, q0, w0);
-  Vector<T, n> q1 = q0 + h * w0;
-  if constexpr (SparselyDifferentiated<System>) {
-    if (sparse_path_applies(system, future)) {
-      auto report = newton_solve<T, n, Eigen::SparseMatrix<T>>(
-          q1, [&](const Vector<T, n>& x, Vector<T, n>& residual, Eigen::SparseMatrix<T>& jacobian) {
-            auto legendre = sparse_begin_momentum(system, future, q0, x, h);
-            residual = legendre.p_begin - p0;
-            jacobian = std::move(legendre.dp_begin_dq_e);
-          });
-      require_converged(report, "start from p_begin(q0, q1) = p(0) with h = " + to_decimal<T>(h, 17));
-      return q1;
-    }
-  }
-  auto report = newton_solve<T, n>(
-      q1, [&](const Vector<T, n>& x, Vector<T, n>& residual, Matrix<T, n, n>& jacobian) {
-        auto legendre = begin_momentum(system, future, q0, x, h);
-        residual = legendre.p_begin - p0;
-        jacobian = legendre.dp_begin_dq_e;
-      });
-  require_converged(report, "start from p_begin(q0, q1) = p(0) with h = " + to_decimal<T>(h, 17));
-  return q1;
+  return next_configuration(system, future, q0, VectorOf<System>(momentum(system, q0, w0)),
+                            VectorOf<System>(q0 + h * w0), h,
+                            "start from p_begin(q0, q1) = p(0) with h = " + to_decimal<T>(h, 17));
 }
 
 }  // namespace vivv

@@ -360,4 +360,35 @@ auto p_end(const System& system, const QxQDiscretization<typename System::Scalar
   return discrete_momenta(system, discretization, q_b, q_e, h).p_end;
 }
 
+// discrete_legendre with its blocks sparse: from L's sparse derivatives where that path applies,
+// else the dense blocks' nonzeros (Galerkin's extremal, a dense jet), for the probes of
+// symplecticity, which need only the blocks' products with vectors.
+template <LagrangianSystem System>
+SparseLegendreBlocks<typename System::Scalar> legendre_blocks(
+    const System& system, const QxQDiscretization<typename System::Scalar>& discretization,
+    const VectorOf<System>& q_b, const VectorOf<System>& q_e, const typename System::Scalar& h) {
+  if constexpr (SparselyDifferentiated<System>) {
+    if (sparse_path_applies(system, discretization)) return sparse_legendre_blocks(system, discretization, q_b, q_e, h);
+  }
+  using T = typename System::Scalar;
+  const auto dense = discrete_legendre(system, discretization, q_b, q_e, h);
+  SparseLegendreBlocks<T> d;
+  d.p_begin = dense.p_begin;
+  d.p_end = dense.p_end;
+  auto sparse = [n = static_cast<int>(q_b.size())](const auto& block) {
+    std::vector<Eigen::Triplet<T>> entries;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        if (block(i, j) != 0) entries.emplace_back(i, j, block(i, j));
+    Eigen::SparseMatrix<T> out(n, n);
+    out.setFromTriplets(entries.begin(), entries.end());
+    return out;
+  };
+  d.dp_begin_dq_b = sparse(dense.dp_begin_dq_b);
+  d.dp_begin_dq_e = sparse(dense.dp_begin_dq_e);
+  d.dp_end_dq_b = sparse(dense.dp_end_dq_b);
+  d.dp_end_dq_e = sparse(dense.dp_end_dq_e);
+  return d;
+}
+
 }  // namespace vivv

@@ -173,4 +173,38 @@ DiscreteLegendre<typename System::Scalar, any_size> sparse_discrete_legendre(
   return d;
 }
 
+// The discrete Legendre transforms with their four derivative blocks kept sparse: what
+// symplecticity's probes (core/structure/symplectic_probes.hpp) apply, O(nonzeros) a step where
+// the dense blocks of sparse_discrete_legendre hold 4n² numbers.
+template <class T>
+struct SparseLegendreBlocks {
+  Vector<T, any_size> p_begin, p_end;
+  Eigen::SparseMatrix<T> dp_begin_dq_b, dp_begin_dq_e, dp_end_dq_b, dp_end_dq_e;
+};
+
+template <SparselyDifferentiated System, class Discretization>
+SparseLegendreBlocks<typename System::Scalar> sparse_legendre_blocks(
+    const System& system, const Discretization& discretization,
+    const VectorOf<System>& q_b, const VectorOf<System>& q_e, const typename System::Scalar& h) {
+  using T = typename System::Scalar;
+  const int n = static_cast<int>(q_b.size());
+  const SparseDiscreteDerivatives<T> L = sparse_discrete_derivatives(system, discretization, q_b, q_e, h, SecondDerivatives::all);
+  SparseLegendreBlocks<T> d;
+  d.p_begin = -L.gradient.head(n);
+  d.p_end = L.gradient.tail(n);
+  std::vector<Eigen::Triplet<T>> blocks[4];  // begin–begin, begin–end, end–begin, end–end
+  for (const auto& entry : L.hessian) {
+    const int r = static_cast<int>(entry.row()), c = static_cast<int>(entry.col());
+    const int block = 2 * (r >= n) + (c >= n);
+    const T value = r < n ? T(-entry.value()) : T(entry.value());  // p_begin = −∂L_d/∂q_b
+    blocks[block].emplace_back(r % n, c % n, value);
+  }
+  Eigen::SparseMatrix<T>* out[4] = {&d.dp_begin_dq_b, &d.dp_begin_dq_e, &d.dp_end_dq_b, &d.dp_end_dq_e};
+  for (int b = 0; b < 4; ++b) {
+    out[b]->resize(n, n);
+    out[b]->setFromTriplets(blocks[b].begin(), blocks[b].end());  // duplicates summed
+  }
+  return d;
+}
+
 }  // namespace vivv

@@ -1,0 +1,11 @@
+// Where symplecticity stops forming dense Jacobians: above this many coordinates a DEL map sized
+// at run time is judged by random probes (core/structure/symplectic_probes.hpp), O(the step's
+// nonzeros) a step; at or below it, densely, entry by entry (harness/claims/symplecticity.hpp).
+// The memory estimate (cases/system_section.cpp) counts dense Jacobians only where they are formed.
+#pragma once
+
+namespace vivv {
+
+inline constexpr int symplecticity_dense_limit = 16;
+
+}  // namespace vivv
