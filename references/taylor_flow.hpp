@@ -46,11 +46,12 @@ struct TaylorReport {
 template <class T>
 class TaylorIntegrator {
  public:
-  // The integrator of x'' = a(x, x') recorded on `tape`, at step tolerance `tolerance`.
-  TaylorIntegrator(Tape<T> tape, T tolerance)
+  // The integrator of x'' = a(x, x') recorded on `tape`, at step tolerance `tolerance`, of order
+  // `order` (0: Jorba–Zou's for the tolerance, taylor_order_for).
+  TaylorIntegrator(Tape<T> tape, T tolerance, int order = 0)
       : expansion_(std::move(tape)),
         tolerance_(std::move(tolerance)),
-        order_(taylor_order_for(tolerance_)) {
+        order_(order > 0 ? order : taylor_order_for(tolerance_)) {
     report_.order = order_;
     report_.tape_operations = expansion_.tape().operations();
   }
@@ -276,9 +277,10 @@ class TaylorFlow {
   using T = typename System::Scalar;
   static constexpr int N = System::dimension;
 
-  // `tolerance`: the Jorba–Zou step tolerance (local error per step about tolerance·max(1, |y|)).
-  TaylorFlow(const System& system, const T& tolerance)
-      : system_(system), integrator_(euler_lagrange_tape(system), tolerance) {}
+  // `tolerance`: the Jorba–Zou step tolerance (local error per step about tolerance·max(1, |y|));
+  // `order`: 0 for Jorba–Zou's, or another (the reference's check at the floor of a precision).
+  TaylorFlow(const System& system, const T& tolerance, int order = 0)
+      : system_(system), integrator_(euler_lagrange_tape(system), tolerance, order) {}
 
   const System& system() const { return system_; }
   int order() const { return integrator_.order(); }

@@ -7,5 +7,8 @@
 namespace vivv {
 
 inline constexpr int symplecticity_dense_limit = 16;
+// The pairs of Gaussian vectors the probes carry through a run (the chance of a miss falls as
+// 10^−pairs: core/structure/symplectic_probes.hpp).
+inline constexpr int symplecticity_probe_pairs = 4;
 
 }  // namespace vivv

@@ -48,7 +48,7 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
   // max_k(ε·s_k·r_k²)·max(1, r_Φ)², r the stretch |Jx|/|x| of the carried vectors. At or below
   // the limit the dense check is cheap and sees J itself.
   static constexpr int dense_limit = symplecticity_dense_limit;
-  static constexpr int probe_pairs = 4;
+  static constexpr int probe_pairs = symplecticity_probe_pairs;
   // A composition whose defect D = ΦᵀΩΦ − Ω has ‖D‖₂ ≥ 10 × its allowance × |ξ||η| passes all
   // probe_pairs pairs with probability at most 10^−probe_pairs (the file's bound, evidence.probes).
   // The seed of the probes' draws (evidence.probes.seed): a run is reproduced from its report.

@@ -37,6 +37,29 @@ TEST(TaylorReferenceTest, ClaimsItsToleranceAgainstTheClosedForm) {
   EXPECT_GT(reference.report().steps, 0);
 }
 
+// At the floor of a hardware scalar (10⁴ ε) the check's step tolerance cannot go below the flow's
+// (both 10 ε): a check at the same tolerance and order took the same steps and agreed to the bit,
+// so estimate_error was exactly 0 and checked nothing (a Lennard-Jones cluster's float128
+// reference reported 0 at T). The check must be another integration: nonzero, within tolerance.
+template <class T>
+void expect_an_independent_check() {
+  Pendulum<T> pendulum;
+  TaylorReference<Pendulum<T>> reference(pendulum, TaylorReference<Pendulum<T>>::floor());
+  State<T, 1> start;
+  start.q[0] = T(1);
+  start.w[0] = T(1) / 2;
+  const T estimate = reference.estimate_error(start, T(10));
+  EXPECT_GT(estimate, 0) << scalar_name<T>();
+  EXPECT_LE(estimate, reference.tolerance()) << scalar_name<T>();
+  EXPECT_NE(reference.cross_check().find("order " + std::to_string(reference.order() + 6)), std::string::npos)
+      << reference.cross_check();
+}
+TEST(TaylorReferenceTest, ItsCheckAtTheFloorIsAnotherIntegration) {
+  expect_an_independent_check<double>();
+  expect_an_independent_check<long double>();
+  expect_an_independent_check<quad>();
+}
+
 TEST(TaylorReferenceTest, ValueDependsOnlyOnStartAndTime) {
   PrecisionGuard guard(61);
   using T = mpfr_real;
