@@ -252,6 +252,9 @@ struct CaseContext {
   State<T, N> initial;
   T final_time;
   State<T, N> final_state;  // the reference state at final_time, computed once
+  // The reference's cross-check's estimate of its error at T (harness/run/run_system_impl.hpp sets
+  // it before any claim runs; 0 until then): floors() rests on it where it exceeds the tolerance.
+  T reference_error_at_T = 0;
   DelScheme<T> scheme;                    // formalism "qxq"
   std::optional<TQDiscretization<T>> tq;  // formalism "tq"
   std::optional<TQDiscretization<T>> tq_compare;  // contact-order's second discretization
@@ -431,13 +434,15 @@ struct CaseContext {
   }
 
   // Errors below this are at the floor: a thousand times the larger of the
-  // reference tolerance and N_max rounding errors, relative to the state's size.
+  // reference tolerance and N_max rounding errors, relative to the state's size — and never below
+  // a thousand times the reference's error at T as its cross-check estimates it
+  // (reference_error_at_T), where that is more than its tolerance promised.
   // floors() keeps the two apart (harness/verdicts/order_fit.hpp, Floor).
   Floor<T> floors() const {
     using std::max;
     const T scale = max(T(1), max(max_norm<T, N>(initial.q), max_norm<T, N>(initial.w)));
     const T steps = T(step_counts().back());
-    return {1000 * steps * working_epsilon() * scale, 1000 * reference.tolerance() * scale,
+    return {1000 * steps * working_epsilon() * scale, 1000 * max(T(reference.tolerance() * scale), reference_error_at_T),
             static_cast<long double>(scale), static_cast<long double>(step_counts().back()),
             spec.discretization.process_precision == "double"};
   }

@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 
 #include "harness/claims/registry.hpp"
@@ -128,6 +129,10 @@ void run_on_system(const System& system, CaseSpec& spec, CaseResult& result, boo
       context.report("cross-checking L's derivatives against differences of its values");
       result.derivative_check = derivative_free_check(context);
     }
+    // Every claim's floor rests on the reference's accuracy as its cross-check measured it.
+    if (const std::string& estimate = result.reference_check.error_estimate;
+        !estimate.empty() && std::isfinite(std::strtold(estimate.c_str(), nullptr)))
+      context.reference_error_at_T = from_decimal<T>(estimate);
     std::map<std::string, double> seconds_before;  // earlier --refine rounds' time, by claim
     for (const auto& claim : result.claims) seconds_before[claim.id] = claim.seconds;
     result.claims.clear();

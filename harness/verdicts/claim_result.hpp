@@ -3,6 +3,9 @@
 // the report model, reports/results.hpp.
 #pragma once
 
+#include <cmath>
+#include <cstdlib>
+
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -16,15 +19,31 @@ namespace vivv {
 // explanation, the verdict it would have had kept in the evidence.
 inline void apply_reference_check(std::vector<ClaimResult>& claims, const ReferenceCheck& reference) {
   if (reference.holds) return;
+  // A finite estimate: the claims were judged against floors raised to 1000 × it (CaseContext::
+  // floors, reference_error_at_T), so a verdict on errors far above the reference's own stands and
+  // one near it is at the floor; each claim says so. Only a cross-check that measured nothing
+  // finite voids them.
+  char* end = nullptr;
+  const long double estimate = std::strtold(reference.error_estimate.c_str(), &end);
+  if (end != reference.error_estimate.c_str() && std::isfinite(estimate)) {
+    for (auto& claim : claims)
+      claim.evidence["reference_missed_its_tolerance"] = {
+          {"error_estimate_at_T", reference.error_estimate},
+          {"allowed", reference.allowed},
+          {"rule",
+           "the reference's cross-check estimates its error at T above what its promised tolerance " +
+               reference.tolerance +
+               " allows: every floor that rests on the reference was raised to 1000 x that estimate, so "
+               "nothing below it was judged against the reference"}};
+    return;
+  }
   for (auto& claim : claims) {
     claim.evidence["verdict_before_reference_check"] = claim.verdict;
     claim.verdict = "error";
-    claim.detection_limit = "none: nothing measured against a reference that misses its own tolerance can be "
-                            "told from that reference's error";
-    claim.explanation = "the reference flow misses its own tolerance: its cross-check estimates the error at T as " +
-                        reference.error_estimate + ", above the " + reference.allowed + " that its promised tolerance " +
-                        reference.tolerance + " (with the check's own) allows; no verdict measured against it "
-                        "can be trusted";
+    claim.detection_limit = "none: nothing measured against a reference whose error is unknown can be told "
+                            "from that reference's error";
+    claim.explanation = "the reference flow's cross-check estimates the error at T as " + reference.error_estimate +
+                        ", not a finite number: no verdict measured against the reference can be trusted";
   }
 }
 

@@ -266,12 +266,14 @@ struct ClosedFormFlow<RedrawnPendulum<T>> {
 
 namespace {
 
-// A reference whose own cross-check misses its promised tolerance turns every claim into
-// "error" with the numbers. The broken reference: a closed form drawn with k off by a thousand
+// A reference whose own cross-check misses its promised tolerance keeps the claims' verdicts,
+// judged against floors raised to 1000 × its estimated error, and each claim records the
+// numbers; one whose estimate is not a finite number turns every claim into "error". The broken
+// reference: a closed form drawn with k off by a thousand
 // times what it and its check promise (about 2e-4 in double, 2e-22 in quad), still promising
 // its few ulps, and found out by the Taylor flow that checks every closed form; drawn right, the
 // same closed form passes the check.
-TYPED_TEST(ClaimsTest, AReferenceThatMissesItsToleranceMakesEveryClaimAnError) {
+TYPED_TEST(ClaimsTest, AReferenceThatMissesItsToleranceRaisesTheFloorsAndAnUnknownOneVoidsTheClaims) {
   using T = TypeParam;
   State<T, 1> start;
   start.q[0] = from_decimal<T>("1.1");
@@ -292,10 +294,20 @@ TYPED_TEST(ClaimsTest, AReferenceThatMissesItsToleranceMakesEveryClaimAnError) {
   std::vector<ClaimResult> claims(2);
   claims[0].verdict = "pass";
   claims[1].verdict = "fail";
+  // A finite estimate: the claims were judged against floors raised to it (CaseContext::floors);
+  // they keep their verdicts and say so.
   apply_reference_check(claims, broken);
+  EXPECT_EQ(claims[0].verdict, "pass");
+  EXPECT_EQ(claims[1].verdict, "fail");
+  for (const auto& claim : claims)
+    EXPECT_EQ(claim.evidence["reference_missed_its_tolerance"]["error_estimate_at_T"], broken.error_estimate);
+  // An estimate that is not a finite number voids every claim.
+  ReferenceCheck unknown = broken;
+  unknown.error_estimate = "nan";
+  apply_reference_check(claims, unknown);
   for (const auto& claim : claims) {
     EXPECT_EQ(claim.verdict, "error");
-    EXPECT_NE(claim.explanation.find(broken.error_estimate), std::string::npos) << claim.explanation;
+    EXPECT_NE(claim.explanation.find("nan"), std::string::npos) << claim.explanation;
   }
   EXPECT_EQ(claims[0].evidence["verdict_before_reference_check"], "pass");
 }
