@@ -60,7 +60,8 @@ class GaussianProbes {
       spare_ = false;
       return stored_;
     }
-    // Box–Muller from two uniforms in (0, 1]: 53-bit fractions of the engine's words.
+    // Box–Muller from two uniforms in (0, 1]: 53-bit fractions of the engine's words (only the
+    // angle's uniformity matters for u2: any whole number of turns gives the same law).
     const double u1 = (static_cast<double>(engine_() >> 11) + 1) * 0x1p-53;
     const double u2 = static_cast<double>(engine_() >> 11) * 0x1p-53;
     const double radius = std::sqrt(-2 * std::log(u1)), angle = 6.283185307179586 * u2;
