@@ -408,11 +408,11 @@ static double bytes_per_number(const std::string& scalar, int digits) {
 }
 
 // Whether a discretization still differentiates L in dense jets at run-time sizes: Galerkin's
-// extremal, the TQ formalism and the maps vivv did not write (first-order jets of 2n + 1 numbers
-// aside, which every path may use). The other Q × Q rules read L's sparse derivatives
-// (core/qxq/sparse_legendre.hpp).
+// extremal and the TQ formalism (first-order jets of 2n + 1 numbers aside, which every path may
+// use). The other Q × Q rules read L's sparse derivatives (core/qxq/sparse_legendre.hpp), and a
+// map's Legendre transform (p = ∂L/∂v and its inverse) reads L's sparse derivatives too.
 static bool dense_second_derivatives(const DiscretizationSpec& d) {
-  return d.formalism != "qxq" || d.kind == "galerkin";
+  return d.formalism == "tq" || d.kind == "galerkin";
 }
 
 void check_memory(const CaseSpec& spec, const std::string& file, const std::string& scalar, int digits,
@@ -423,7 +423,9 @@ void check_memory(const CaseSpec& spec, const std::string& file, const std::stri
       static_cast<double>(spec.formula->operations ? spec.formula->operations
                                                    : make_formula_system<long double, any_size>(*spec.formula)
                                                          .program->nodes.size());
-  const double number = bytes_per_number(scalar, digits);
+  // A program that computes in double is judged with vivv's side in float128 (run_case.cpp).
+  const double number = bytes_per_number(
+      scalar == "double" && spec.discretization.process_precision == "double" ? "float128" : scalar, digits);
   // The largest of what the run holds at once: first-order jets through L's tape; with a dense
   // discretization, second-order jets of 1 + 2n + (2n)² numbers per operation; and for
   // symplecticity the dense 2n × 2n Jacobian of every step of the longest run.

@@ -78,7 +78,8 @@ int progress_fd = -1;
 // Progress on stderr, one line every few seconds per case (documented in README, "Progress"):
 //   [ELAPSED s] CASE: WHAT              the phase the case is in, when it changed
 //   [ELAPSED s] … still: CASE: WHAT (N s so far)   the same phase, still running
-// ELAPSED counts from the case's start. The case's first message is written at once; then a
+// ELAPSED counts from the case's start; in a run of several cases it reads "ELAPSED s, case I of
+// N" (I the case's place in the run's list). The case's first message is written at once; then a
 // thread that only prints writes the phase every `interval`, never a line per step count. Each
 // line is one write() of at most a few hundred bytes — in a worker, into the pipe the parent
 // reads (atomic below PIPE_BUF), so that lines of parallel cases never interleave. Lives for
@@ -88,7 +89,9 @@ class ProgressPrinter {
   using Clock = std::chrono::steady_clock;
   static constexpr auto interval = std::chrono::seconds(3);
 
-  ProgressPrinter() : started_(Clock::now()), last_line_(started_), phase_started_(started_) {
+  // `place`: ", case I of N" in a run of several cases, else empty.
+  explicit ProgressPrinter(std::string place)
+      : place_(std::move(place)), started_(Clock::now()), last_line_(started_), phase_started_(started_) {
     thread_ = std::thread([this] { beat(); });
   }
   ~ProgressPrinter() {
@@ -130,7 +133,7 @@ class ProgressPrinter {
   void write(const std::string& message) const {
     const double elapsed = std::chrono::duration<double>(Clock::now() - started_).count();
     std::ostringstream line;
-    line << "[" << std::fixed << std::setprecision(1) << elapsed << " s] "
+    line << "[" << std::fixed << std::setprecision(1) << elapsed << " s" << place_ << "] "
          << terminal_safe(cut_at_character(message, 600)) << "\n";
     const std::string text = line.str();
     if (progress_fd >= 0) {
@@ -140,6 +143,7 @@ class ProgressPrinter {
     }
   }
 
+  const std::string place_;
   const Clock::time_point started_;
   Clock::time_point last_line_, phase_started_;
   std::string phase_, printed_;
@@ -149,9 +153,10 @@ class ProgressPrinter {
   std::thread thread_;
 };
 
-std::function<void(const std::string&)> progress_printer(bool enabled) {
+std::function<void(const std::string&)> progress_printer(bool enabled, std::size_t index, std::size_t count) {
   if (!enabled) return {};
-  auto printer = std::make_shared<ProgressPrinter>();
+  auto printer = std::make_shared<ProgressPrinter>(
+      count > 1 ? ", case " + std::to_string(index + 1) + " of " + std::to_string(count) : "");
   return [printer](const std::string& message) { printer->print(message); };
 }
 
@@ -163,15 +168,15 @@ std::string recorded_message(const std::exception& error) {
   return repaired_utf8(cut_in_the_middle(error.what(), 2000));
 }
 
-// Runs one case; solver failures and non-regular Lagrangians are bad input.
-nlohmann::json run_one(const CaseSpec& spec, const RunOptions& options) {
+// Runs one case, the index-th of count; solver failures and non-regular Lagrangians are bad input.
+nlohmann::json run_one(const CaseSpec& spec, const RunOptions& options, std::size_t index, std::size_t count) {
   try {
     CaseSpec effective = spec;
     if (options.scalar) effective.scalar = *options.scalar;
     if (options.digits && effective.scalar != "mpfr")
       throw BadInput("--digits sets the MPFR working precision, and this case runs in \"" +
                      effective.scalar + "\"");
-    std::function<void(const std::string&)> progress = progress_printer(options.progress);
+    std::function<void(const std::string&)> progress = progress_printer(options.progress, index, count);
     if (options.max_seconds) {
       // The budget: SIGALRM after max_seconds ends the process with the phase it was in.
       budget_seconds = *options.max_seconds;
@@ -274,7 +279,7 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
   if (options.jobs == 1 && !options.keep_going) {
     for (std::size_t i = 0; i < specs.size(); ++i) {
       try {
-        results[i] = run_one(specs[i], options);
+        results[i] = run_one(specs[i], options, i, specs.size());
       } catch (const CouldNotRun& error) {
         results[i] = {{"could_not_run", recorded_message(error)}};
       }
@@ -390,7 +395,7 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
                               O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
         try {
           write_exclusively(work / (std::to_string(next) + ".json"),
-                            run_one(specs[next], options)
+                            run_one(specs[next], options, next, specs.size())
                                 .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
         } catch (const CouldNotRun& error) {
           try {

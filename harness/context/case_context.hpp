@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <mutex>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -196,9 +197,16 @@ int contact_order(const TQDiscretization<T>& one, const TQDiscretization<T>& two
 // Reference tolerance for a case computed in MPFR with `digits` decimal digits: ten
 // digits of the working precision are kept as guard. In double, long double and
 // float128 the reference runs in the same scalar: 1000 ε, three digits of guard.
+// A program that computes in double (`double_program`) is judged in float128 at a double's
+// rounding (working_epsilon): its reference needs 10⁻⁶ of a double's ε, 2.2e-22, which puts
+// the floors' reference part (1000·tolerance) 10⁻⁶ below their rounding part (1000·N·ε of a
+// double) and costs a Taylor order of 30 where float128's own floor, 1.9e-30, cost 39 (the
+// 114-coordinate LJ38 case: its reference and cross-check 36 s → see docs/performance.md).
 template <class T>
-T reference_tolerance_for(int digits) {
+T reference_tolerance_for(int digits, bool double_program = false) {
   using std::pow;
+  using std::max;
+  if (double_program) return max(T(T(1e-6) * T(std::numeric_limits<double>::epsilon())), T(1000 * epsilon<T>()));
   if constexpr (is_mpfr_v<T>) return pow(T(10), -(digits - 10));
   else return 1000 * epsilon<T>();
 }
@@ -282,10 +290,10 @@ struct CaseContext {
       : spec(spec_),
         system(system_),
         n(dimension_of(system_)),
-        reference(system_, reference_tolerance_for<T>(spec_.digits)),
+        reference(system_, reference_tolerance_for<T>(spec_.digits, spec_.discretization.process_precision == "double")),
         final_time(from_decimal<T>(spec_.final_time)),
         order_tolerance(std::stod(spec_.order_tolerance)),
-        progress(std::move(progress_)) {
+        progress(serialized(std::move(progress_))) {
     initial = {zero_vector<T, N>(n), zero_vector<T, N>(n)};
     for (int i = 0; i < n; ++i) {
       initial.q[i] = from_decimal<T>(spec.q[i]);
@@ -293,6 +301,10 @@ struct CaseContext {
     }
     reference.set_progress(flow_progress("reference flow"), flow_progress("reference flow's cross-check"));
     report("reference flow to T = " + spec.final_time);
+    // The reference's cross-check (harness/run/run_system_impl.hpp, check_reference) is an
+    // integration as long as the flow's: a Taylor reference begins it now, on a thread beside this
+    // one (its progress lines are serialized with this thread's: progress_).
+    if constexpr (requires { reference.start_check(initial, final_time); }) reference.start_check(initial, final_time);
     final_state = reference.advance(initial, final_time);
     if (spec.discretization.formalism == "map") map = make_map();
     if (spec.discretization.formalism == "tq") {
@@ -481,6 +493,15 @@ struct CaseContext {
 
   void report(const std::string& message) const {
     if (progress) progress(message);
+  }
+
+  // `print` called by one thread at a time: the reference's cross-check reports from its own.
+  static std::function<void(const std::string&)> serialized(std::function<void(const std::string&)> print) {
+    if (!print) return print;
+    return [print = std::move(print), mutex = std::make_shared<std::mutex>()](const std::string& message) {
+      std::lock_guard<std::mutex> lock(*mutex);
+      print(message);
+    };
   }
 
   // For a long loop of steps: "<what>: step k of N" at most every five seconds (none without
