@@ -60,6 +60,39 @@ TEST(TaylorReferenceTest, ItsCheckAtTheFloorIsAnotherIntegration) {
   expect_an_independent_check<quad>();
 }
 
+// The cross-check begun on its own thread (start_check, beside the flow's integration) is the same
+// integration as the one estimate_error runs inline: the same estimate to the bit, in each scalar.
+// A check begun for another end is not taken for this one; a reference destroyed while its check
+// runs stops it (the destructor returns).
+template <class T>
+void expect_the_concurrent_check_to_be_the_inline_one() {
+  Pendulum<T> pendulum;
+  State<T, 1> start;
+  start.q[0] = T(1);
+  start.w[0] = T(1) / 2;
+  TaylorReference<Pendulum<T>> inline_check(pendulum, T(1e-12) > TaylorReference<Pendulum<T>>::floor()
+                                                          ? T(1e-12)
+                                                          : TaylorReference<Pendulum<T>>::floor());
+  TaylorReference<Pendulum<T>> concurrent(pendulum, inline_check.tolerance());
+  concurrent.start_check(start, T(10));
+  concurrent.advance(start, T(10));
+  const T estimate = concurrent.estimate_error(start, T(10));
+  EXPECT_EQ(estimate, inline_check.estimate_error(start, T(10))) << scalar_name<T>();
+  EXPECT_GT(estimate, 0) << scalar_name<T>();
+  TaylorReference<Pendulum<T>> other_end(pendulum, inline_check.tolerance());
+  other_end.start_check(start, T(5));
+  EXPECT_EQ(other_end.estimate_error(start, T(10)), estimate) << scalar_name<T>();
+  {
+    TaylorReference<Pendulum<T>> abandoned(pendulum, inline_check.tolerance());
+    abandoned.start_check(start, T(1000));
+  }
+}
+TEST(TaylorReferenceTest, ItsConcurrentCheckIsTheInlineOne) {
+  expect_the_concurrent_check_to_be_the_inline_one<double>();
+  expect_the_concurrent_check_to_be_the_inline_one<long double>();
+  expect_the_concurrent_check_to_be_the_inline_one<quad>();
+}
+
 TEST(TaylorReferenceTest, ValueDependsOnlyOnStartAndTime) {
   PrecisionGuard guard(61);
   using T = mpfr_real;
