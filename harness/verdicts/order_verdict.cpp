@@ -228,7 +228,8 @@ std::optional<Rise> rising_toward(const OrderFit& fit, double predicted, bool ex
   std::size_t start = all.size() - 1;
   while (start >= 1 && all[start] > all[start - 1]) --start;
   Rise rise{{all.begin(), all.begin() + static_cast<std::ptrdiff_t>(start)},
-            {all.begin() + static_cast<std::ptrdiff_t>(start), all.end()}};
+            {all.begin() + static_cast<std::ptrdiff_t>(start), all.end()},
+            {}};
   const std::vector<double>& o = rise.orders;
   if (o.size() < 2) return std::nullopt;
   for (std::size_t k = 2; k < o.size(); ++k)
@@ -270,7 +271,8 @@ std::optional<Rise> accelerating_toward(const OrderFit& fit, double predicted, b
   std::size_t start = all.size() - 1;
   while (start >= 1 && all[start] - all[start - 1] > receding_noise) --start;
   Rise rise{{all.begin(), all.begin() + static_cast<std::ptrdiff_t>(start)},
-            {all.begin() + static_cast<std::ptrdiff_t>(start), all.end()}};
+            {all.begin() + static_cast<std::ptrdiff_t>(start), all.end()},
+            {}};
   const std::vector<double>& o = rise.orders;
   if (o.size() < 3) return std::nullopt;
   const std::size_t last = o.size() - 1;
