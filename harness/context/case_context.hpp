@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <initializer_list>
 #include <mutex>
 #include <memory>
 #include <stdexcept>
@@ -299,6 +300,10 @@ struct CaseContext {
       initial.q[i] = from_decimal<T>(spec.q[i]);
       initial.w[i] = from_decimal<T>(spec.w[i]);
     }
+    // A program is greeted first: one that declines the system or fails stops the case before the
+    // reference flow's minutes (its orbit's size is widened by the state at T below).
+    std::shared_ptr<ProcessMap<System>> program;
+    if (spec.discretization.formalism == "map" && spec.discretization.kind == "process") program = make_process_map();
     reference.set_progress(flow_progress("reference flow"), flow_progress("reference flow's cross-check"));
     report("reference flow to T = " + spec.final_time);
     // The reference's cross-check (harness/run/run_system_impl.hpp, check_reference) is an
@@ -306,7 +311,12 @@ struct CaseContext {
     // one (its progress lines are serialized with this thread's: progress_).
     if constexpr (requires { reference.start_check(initial, final_time); }) reference.start_check(initial, final_time);
     final_state = reference.advance(initial, final_time);
-    if (spec.discretization.formalism == "map") map = make_map();
+    if (program) {
+      program->widen_orbit(orbit_size({final_state}));
+      map = program;
+    } else if (spec.discretization.formalism == "map") {
+      map = make_map();
+    }
     if (spec.discretization.formalism == "tq") {
       // An exact psi runs at the reference's step tolerance.
       T curve_tolerance = reference.tolerance() / 1000;
@@ -344,7 +354,7 @@ struct CaseContext {
   // The odeint stepper of the case on the system's separable form, after checking that L is
   // ½ wᵀ M w − V(q) with M constant at the initial and final states and their two mixtures.
   std::shared_ptr<const OneStepMap<T, N>> make_map() const {
-    if (spec.discretization.kind == "process") return make_process_map();
+
     std::vector<State<T, N>> samples = {initial, final_state, {initial.q, final_state.w}, {final_state.q, initial.w}};
     if (auto defect = separability_defect(system, samples))
       throw CaseError(
@@ -366,8 +376,20 @@ struct CaseContext {
     return factory->second(separable_form(system, initial));
   }
 
-  // The case's map in another program (kind "process"), started only where the run allows it.
-  std::shared_ptr<const OneStepMap<T, N>> make_process_map() const {
+  // max |q_i|, |p_i| over `states`: by it an answer far beyond the orbit is a divergence (ProcessMap).
+  T orbit_size(std::initializer_list<State<T, N>> states) const {
+    using std::abs, std::max;
+    T size = 0;
+    for (const State<T, N>& x : states) {
+      const Vector<T, N> p = momentum(system, x.q, x.w);
+      for (int i = 0; i < n; ++i) size = max({size, T(abs(x.q[i])), T(abs(p[i]))});
+    }
+    return size;
+  }
+
+  // The case's map in another program (kind "process"), started only where the run allows it, its
+  // orbit's size that of the initial state until the reference's state at T widens it.
+  std::shared_ptr<ProcessMap<System>> make_process_map() const {
     const DiscretizationSpec& d = spec.discretization;
     if (!d.process_allowed) {  // a run that did not call permit_process (harness/process/program.hpp)
       CaseSpec refused = spec;
@@ -382,15 +404,8 @@ struct CaseContext {
     options.command = d.command;
     options.directory = std::filesystem::absolute(spec.file).parent_path().string();
     options.timeout_seconds = d.process_timeout_seconds;
-    // The orbit's size, by which an answer far beyond it is a divergence (ProcessMap).
-    using std::abs, std::max;
-    T orbit_size = 0;
-    for (const State<T, N>& x : {initial, final_state}) {
-      const Vector<T, N> p = momentum(system, x.q, x.w);
-      for (int i = 0; i < n; ++i) orbit_size = max({orbit_size, T(abs(x.q[i])), T(abs(p[i]))});
-    }
     return std::make_shared<ProcessMap<System>>(system, options, system_json, d.declared_order,
-                                                orbit_size, d.process_precision == "double");
+                                                orbit_size({initial}), d.process_precision == "double");
   }
 
   // The step counts the claims walk: the case's sweep, or, while a claim is judged again on the

@@ -63,6 +63,14 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
         bound_(to_decimal<T>(scale_bound(orbit_size))),
         process_(start(digits_)) {}
 
+  // The orbit's size once more of it is known (the reference's state at T: the program is greeted
+  // before the reference flow runs, so that one that declines or fails says so in seconds).
+  void widen_orbit(const T& size) {
+    using std::max;
+    orbit_size_ = max(orbit_size_, size);
+    bound_ = to_decimal<T>(scale_bound(orbit_size_));
+  }
+
   // How far beyond the orbit's size an answer may lie before its run counts as diverged: 10^10.
   // A method that errs by the orbit's size itself (order 0) stays 10 orders of magnitude below
   // it; an answer beyond it is not followed, since vivv's work on a state — the inverse Legendre
