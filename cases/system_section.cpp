@@ -439,8 +439,10 @@ void check_memory(const CaseSpec& spec, const std::string& file, const std::stri
     what = "for vivv's dense second derivatives (each operation a jet of 1 + 2n + (2n)^2 numbers)";
   }
   const bool symplecticity = std::find(spec.claims.begin(), spec.claims.end(), "symplecticity") != spec.claims.end();
-  // A DEL map above symplecticity_dense_limit coordinates is judged by probes and keeps no Jacobian.
-  const bool dense_symplecticity = spec.discretization.formalism != "qxq" || spec.dimension <= symplecticity_dense_limit;
+  // A DEL map or a one-step map above symplecticity_dense_limit coordinates is judged by probes and
+  // keeps no Jacobian.
+  const bool dense_symplecticity = (spec.discretization.formalism != "qxq" && spec.discretization.formalism != "map") ||
+                                   spec.dimension <= symplecticity_dense_limit;
   if (symplecticity && dense_symplecticity && !spec.steps.empty()) {
     const double jacobians = static_cast<double>(spec.steps.back()) * 4 * n * n * number;
     if (jacobians > needed) {

@@ -52,6 +52,19 @@ struct OneStepMap {
   virtual State<T, n> step(const State<T, n>& x, const T& h) const = 0;
   // ∂(q', p')/∂(q, p) at x.
   virtual Matrix<T, twice(n), twice(n)> jacobian(const State<T, n>& x, const T& h) const = 0;
+  // ∂(q', p')/∂(q, p) at x applied to each of `directions` (vectors on (q, p)): J·v, for checks that
+  // need J only through products (symplecticity's probes above its dense limit). A map that can
+  // form J·v without J overrides it (a program: differences along v, a few requests each, where J
+  // takes some for each of the 2n coordinates); last_jacobian_unit() is then the products' relative
+  // rounding, relative to max(1, the largest |J·v|/|v|).
+  virtual std::vector<Vector<T, twice(n)>> jacobian_along(const State<T, n>& x, const T& h,
+                                                          const std::vector<Vector<T, twice(n)>>& directions) const {
+    const Matrix<T, twice(n), twice(n)> j = jacobian(x, h);
+    std::vector<Vector<T, twice(n)>> out;
+    out.reserve(directions.size());
+    for (const Vector<T, twice(n)>& v : directions) out.push_back(j * v);
+    return out;
+  }
   // Φ_h^count(x) at once, where the map can take several steps a call cheaper than one at a time
   // (a program that took up the protocol's "steps" extension: only the last state crosses its
   // pipe); nullopt where it cannot, or where a state on the way left the finite numbers or the

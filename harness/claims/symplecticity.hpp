@@ -12,6 +12,7 @@
 #include "core/structure/symplectic_probes.hpp"
 #include "harness/claims/claim.hpp"
 #include "harness/claims/global_order.hpp"
+#include "harness/claims/map_symplecticity_probes.hpp"
 
 namespace vivv {
 
@@ -62,7 +63,40 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
     std::vector<T> units;  // the rounding unit of the judged (worst) step at each h
     std::vector<JacobianCheck> jacobian_checks;  // the judged step's Jacobian against its map
     bool noise_raised_tolerance = false;  // a program's measured answer noise raised some step's tolerance
-    if (context.map) {
+    if (context.map && judged_by_probes(context)) {
+      if constexpr (N == any_size)
+        measure_map_by_probes<SymplecticityClaim>(context, exponents, check, units, jacobian_checks,
+                                                  noise_raised_tolerance);
+      claim.evidence["jacobian"] = "not formed: J applied to vectors, " + context.map->jacobian_method() +
+                                   " taken along each vector instead of each coordinate";
+      claim.evidence["jacobian_unit"] = to_decimal<T>(context.map->jacobian_unit(), 6);
+      claim.evidence["probes"] = {
+          {"rule",
+           "at each step " + std::to_string(map_probe_fresh_pairs) +
+               " new pairs of standard Gaussian vectors (xi, eta) on (q, p): |xi^T (J^T Omega J - Omega) eta| per "
+               "unit |xi||eta| against " + std::to_string(ulps) +
+               " ulps x u x max(1, g)^2, u the products' relative rounding (evidence.jacobian_unit, or the noise "
+               "measured in the map's answers) and g the largest |J v|/|v| of the step's vectors; " +
+               std::to_string(map_probe_carried_pairs) +
+               " pairs carried through the whole run for the composition, against N x that x max(1, |Phi xi|/|xi|, "
+               "|Phi eta|/|eta|)^2"},
+          {"miss_probability",
+           "a step whose ||J^T Omega J - Omega||_2 is at least 10 x its tolerance x |xi||eta| passes its " +
+               std::to_string(map_probe_fresh_pairs) + " pairs with probability at most 10^-" +
+               std::to_string(map_probe_fresh_pairs) + ", a defect present at m steps at most 10^-(" +
+               std::to_string(map_probe_fresh_pairs) + " m), the composition 10^-" +
+               std::to_string(map_probe_carried_pairs) +
+               ": coarser than the dense check by up to 2n for a defect in one entry, about sqrt(2n) for one "
+               "spread over the coordinates"},
+          {"dense_limit", "the dense check (every entry of J^T Omega J - Omega) up to " +
+                              std::to_string(dense_limit) + " coordinates"},
+          {"seed", probe_seed}};
+      claim.evidence["tolerance_rule"] =
+          std::to_string(ulps) +
+          " ulps × u × max(1, g)² per step by probes (evidence.probes; measured: the step with the largest "
+          "defect/tolerance); the composition by carried probes; a defect falling like a power of h fails as "
+          "truncation";
+    } else if (context.map) {
       // A one-step map: its Jacobian by jets through its own code; no Hessian blocks to size.
       visit_map_trajectories(context, "symplecticity: Jacobians", [&](const T& h, const auto& x) {
         std::vector<Matrix<T, twice(N), twice(N)>> jacobians;
@@ -237,9 +271,18 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
           "u = ε·s per step (s the largest balanced Hessian block, rows[].step_size_factor); a step fails "
           "above " + std::to_string(ulps) + " u, and defects above " + std::to_string(resolved) +
           " u at two or more h falling like a power of h fail as truncation";
+    const bool map_probes = context.map && judged_by_probes(context);
+    if (map_probes)
+      claim.evidence["rounding_unit_rule"] =
+          "u = the relative rounding of the map's products J v (evidence.jacobian_unit, or the noise its answers "
+          "show: rows[].step_size_factor in units of it) times max(1, g)², g the probes' largest |J v|/|v|; a step "
+          "fails above " + std::to_string(ulps) + " u, and defects above " + std::to_string(resolved) +
+          " u at two or more h falling like a power of h fail as truncation";
     check.conclude_claim(claim, context,
                          generating_form ? "max_k of |E_b + B_eᵀ|, |B_b − B_bᵀ|, |E_e − E_eᵀ| (the DEL map's generating "
                                            "form of JᵀΩJ = Ω; worst step against its tolerance)"
+                         : map_probes    ? "max_k of |ξᵀ(J_kᵀΩJ_k − Ω)η| / (|ξ||η|) over each step's fresh Gaussian "
+                                           "pairs (worst step against its tolerance)"
                                          : "max_k |J_kᵀΩJ_k − Ω| (worst step against its tolerance)",
                          "symplectic to working precision at every step and every h, and so is the N-step map",
                          "the (q, p) map is not symplectic");

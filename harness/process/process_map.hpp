@@ -225,6 +225,74 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     return jacobian;
   }
 
+  // J·v for each direction without J where the program does not send it: differences along v,
+  // as jacobian() takes them along each coordinate — a double program's extrapolated pair of widths
+  // (4 requests a direction, where J takes 8n), the second instance's one width (2, where J takes
+  // 4n) —, the answer noise measured as for J. The unit (last_jacobian_unit) is relative to
+  // max(1, the largest |J·v|/|v|): entry i of J·v errs by about 1.5·r·10^e·max_j |v_j| / max(1,
+  // |y_j|) (a double program's answers erring by r), what a column's entries err by times |v|'s
+  // largest entry. A program that sends its J: that J times each v.
+  std::vector<Vector<T, twice(N)>> jacobian_along(const State<T, N>& x, const T& h,
+                                                  const std::vector<Vector<T, twice(N)>>& directions) const override {
+    using V = Vector<T, twice(N)>;
+    if (process_->uses_extension(jacobian_extension)) {
+      const Matrix<T, twice(N), twice(N)> j = jacobian(x, h);
+      std::vector<V> out;
+      for (const V& v : directions) out.push_back(j * v);
+      return out;
+    }
+    const long step_index = next_jacobian_step(h);
+    const Vector<T, N> p = momentum_at(x);
+    std::vector<std::string> y(2 * n);
+    for (int i = 0; i < n; ++i) y[i] = to_decimal<T>(x.q[i]), y[n + i] = to_decimal<T>(p[i]);
+    const std::string step = to_decimal<T>(h);
+    last_unit_ = jacobian_unit();
+    std::string unit;  // a double program's measured unit, a decimal
+    const int count = static_cast<int>(directions.size());
+    // Decimals in and out, so that no T is made or read at the guard's precision (an MPFR T would
+    // take it: the working precision's ε must stay the working one's).
+    std::vector<std::vector<std::string>> given(static_cast<std::size_t>(count), std::vector<std::string>(2 * n));
+    for (int k = 0; k < count; ++k)
+      for (int i = 0; i < 2 * n; ++i) given[k][i] = to_decimal<T>(directions[k][i]);
+    const std::string epsilon_of_T = to_decimal<T>(epsilon<T>());
+    Columns products;
+    {
+      PrecisionGuard guard(double_program_ ? digits_ + 30 : fine_digits() + 10);
+      const auto direction = [&](int k) {
+        std::vector<R> u(2 * n);
+        for (int i = 0; i < 2 * n; ++i) u[i] = from_decimal<R>(given[k][i]);
+        return u;
+      };
+      if (double_program_) {
+        using std::pow, std::sqrt;
+        const auto narrow = along(*process_, digits_, step, y, count, direction, double_exponent(), h);
+        const auto wide = along(*process_, digits_, step, y, count, direction, double_exponent(), h, 2);
+        Differences extrapolated(count, std::vector<R>(2 * n));
+        R largest = 1;
+        for (int k = 0; k < count; ++k) {
+          R image = 0, length = 0;
+          for (int i = 0; i < 2 * n; ++i) {
+            extrapolated[k][i] = (4 * narrow[k][i] - wide[k][i]) / 3;
+            image += extrapolated[k][i] * extrapolated[k][i];
+            const R v = from_decimal<R>(given[k][i]);
+            length += v * v;
+          }
+          if (length > 0) largest = std::max(largest, R(sqrt(R(image / length))));
+        }
+        products = decimals(extrapolated);
+        if (step_index % recheck == 0) answer_noise_ = std::max(answer_noise_, noise_near(step, y, h));
+        unit = to_decimal<R>(R(3 * answer_noise_ * pow(R(10), double_exponent()) / (2 * largest)));
+      } else {
+        products = decimals(fine_along(y, step, h, count, direction, epsilon_of_T));
+      }
+    }
+    if (!unit.empty()) last_unit_ = std::max(jacobian_unit(), from_decimal<T>(unit));
+    std::vector<V> out(static_cast<std::size_t>(count), V(2 * n));
+    for (int k = 0; k < count; ++k)
+      for (int i = 0; i < 2 * n; ++i) out[k][i] = from_decimal<T>(products[k][i]);
+    return out;
+  }
+
   // The extension a program takes up to send its own Jacobian with each answer.
   static constexpr const char* jacobian_extension = "jacobian";
   // The extension a program takes up to say, in each step's answer, how many evaluations (of its
@@ -291,28 +359,56 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   Differences differences(MapProcess& process, int digits, const std::string& step,
                           const std::vector<std::string>& y, int exponent, const T& h,
                           int multiple = 1) const {
+    const auto column = [&](int j) {
+      std::vector<R> u(2 * n, R(0));
+      u[j] = 1;
+      return u;
+    };
+    return along(process, digits, step, y, 2 * n, column, exponent, h, multiple);
+  }
+
+  // J·u for each of `count` directions u = direction(k) by central differences along u, in MPFR at
+  // the caller's PrecisionGuard: the point moves by ±δ·s·u, δ = multiple·10^(−exponent), s the
+  // scale at which the largest |u_j|·s / max(1, |y_j|) is 1 — for a column j, s = max(1, |y_j|), the
+  // coordinate's own width, so a column is what differences() always took. Entries where u_j = 0
+  // keep y's decimal. 2 requests a direction.
+  template <class Direction>
+  Differences along(MapProcess& process, int digits, const std::string& step, const std::vector<std::string>& y,
+                    int count, const Direction& direction, int exponent, const T& h, int multiple = 1) const {
     using std::abs, std::max, std::pow;
-    Differences result(2 * n, std::vector<R>(2 * n));
-    for (int j = 0; j < 2 * n; ++j) {
-      const R yj = from_decimal<R>(y[j]);
-      const R delta = multiple * pow(R(10), -exponent) * max(R(1), R(abs(yj)));
+    Differences result(static_cast<std::size_t>(count), std::vector<R>(2 * n));
+    std::vector<R> centre(2 * n);
+    for (int j = 0; j < 2 * n; ++j) centre[j] = from_decimal<R>(y[j]);
+    for (int k = 0; k < count; ++k) {
+      const std::vector<R> u = direction(k);
+      // the entry that sets the scale: the largest |u_j| / max(1, |y_j|)
+      int widest = -1;
+      R ratio = 0;
+      for (int j = 0; j < 2 * n; ++j) {
+        const R r = R(abs(u[j])) / max(R(1), R(abs(centre[j])));
+        if (r > ratio) ratio = r, widest = j;
+      }
+      if (widest < 0) continue;  // u = 0: J·u = 0
+      const R scale = max(R(1), R(abs(centre[widest]))) / R(abs(u[widest]));
+      const R delta = multiple * pow(R(10), -exponent) * scale;
       std::array<std::vector<R>, 2> images{std::vector<R>(2 * n), std::vector<R>(2 * n)};
       for (int side = 0; side < 2; ++side) {
         nlohmann::json request = {
             {"h", step}, {"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
         for (int i = 0; i < 2 * n; ++i)
           request[i < n ? "q" : "p"].push_back(
-              i == j ? to_decimal<R>(side == 0 ? R(yj + delta) : R(yj - delta)) : y[i]);
+              u[i] == 0 ? y[i]
+                        : to_decimal<R>(side == 0 ? R(centre[i] + delta * u[i]) : R(centre[i] - delta * u[i])));
         images[side] = answer_state<R>(process, process.request(request), digits, h);
       }
-      for (int i = 0; i < 2 * n; ++i) result[j][i] = (images[0][i] - images[1][i]) / (2 * delta);
+      for (int i = 0; i < 2 * n; ++i) result[k][i] = (images[0][i] - images[1][i]) / (2 * delta);
     }
     return result;
   }
   static Columns decimals(const Differences& d) {
-    Columns columns(d.size(), std::vector<std::string>(d.size()));
+    Columns columns(d.size());
     for (std::size_t j = 0; j < d.size(); ++j)
-      for (std::size_t i = 0; i < d.size(); ++i) columns[j][i] = to_decimal<R>(d[j][i]);
+      for (std::size_t i = 0; i < d[j].size(); ++i) columns[j].push_back(to_decimal<R>(d[j][i]));
     return columns;
   }
 
@@ -320,27 +416,40 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   // `recheck`-th are computed again at ten times the width and at a coarse width (padded digits).
   Columns fine_differences(const std::vector<std::string>& y, const std::string& step,
                            const T& h) const {
-    if (!fine_) fine_ = start(fine_digits());
+    const auto column = [&](int j) {
+      std::vector<R> u(2 * n, R(0));
+      u[j] = 1;
+      return u;
+    };
     const std::string epsilon_of_T = to_decimal<T>(epsilon<T>());
+    PrecisionGuard guard(fine_digits() + 10);
+    return decimals(fine_along(y, step, h, 2 * n, column, epsilon_of_T));
+  }
+  // The same along `count` directions (along): J·u for each, in MPFR at the caller's PrecisionGuard
+  // (fine_digits() + 10; `epsilon_of_T` the working precision's ε, taken before it), the first and
+  // every `recheck`-th call checked at 10 times the width and at the coarse width as columns are.
+  template <class Direction>
+  Differences fine_along(const std::vector<std::string>& y, const std::string& step, const T& h, int count,
+                         const Direction& direction, const std::string& epsilon_of_T) const {
+    if (!fine_) fine_ = start(fine_digits());
     // The first Jacobian and every `recheck`-th one are computed again at 10 times the width: a
     // program computing at the digits it was asked for gives the same matrix to about
     // 10^(−(4D+14)/3) (the width's truncation grows 100 times), far below ε of the working
     // precision; one that computes in fewer digits and pads its answers differs by its own
     // rounding over the width, and the Jacobian would measure that instead of the map.
     const bool check = jacobians_++ % recheck == 0;
-    PrecisionGuard guard(fine_digits() + 10);
     using std::abs, std::max, std::pow;
-    const auto narrow = differences(*fine_, fine_digits(), step, y, difference_exponent(), h);
+    const auto narrow = along(*fine_, fine_digits(), step, y, count, direction, difference_exponent(), h);
     if (check) {
       // Against a coarse width 10^(-ceil(D/3)) too, which a program computing in fewer digits
       // still resolves: padding below its precision makes both narrow widths see no change at
       // all (a zero column agrees with itself). At the coarse width the truncation is about
       // 10^(-2D/3) times the map's third derivative; a change above 10^(-ceil(D/6))·|J| would
       // need a third derivative near 10^(D/2).
-      const auto wide = differences(*fine_, fine_digits(), step, y, difference_exponent() - 1, h);
-      const auto coarse = differences(*fine_, fine_digits(), step, y, coarse_exponent(), h);
+      const auto wide = along(*fine_, fine_digits(), step, y, count, direction, difference_exponent() - 1, h);
+      const auto coarse = along(*fine_, fine_digits(), step, y, count, direction, coarse_exponent(), h);
       R largest = 1, change = 0, coarse_change = 0;
-      for (int j = 0; j < 2 * n; ++j)
+      for (int j = 0; j < count; ++j)
         for (int i = 0; i < 2 * n; ++i)
           largest = max(largest, R(abs(narrow[j][i]))),
           change = max(change, R(abs(narrow[j][i] - wide[j][i]))),
@@ -360,7 +469,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
                      to_decimal<R>(from_decimal<R>(epsilon_of_T), 3) + " times |J| = " +
                      to_decimal<R>(largest, 3));
     }
-    return decimals(narrow);
+    return narrow;
   }
 
   // The program's own Jacobian (extension "jacobian") at y: one request marked "jacobian": true,

@@ -18,6 +18,7 @@
 
 #include "core/formulas/formula_system.hpp"
 #include "core/structure/symplectic.hpp"
+#include "core/structure/symplectic_probes.hpp"
 #include "tests/chain_formula.hpp"
 #include "tests/test_scalars.hpp"
 
@@ -97,10 +98,24 @@ void expect_program_step_and_jacobian(int n) {
   const T defect = symplecticity_defect(J);
   EXPECT_LE(defect, 1024 * program->last_jacobian_unit()) << "|J^T Omega J - Omega| = " << defect;
 
-  // The negative: h·1.001 in the drift moves q' by 10⁻³ h |p½|, far beyond the tolerance.
+  // J applied to vectors by differences along them (symplecticity's probes above 16 coordinates):
+  // J·v, at the second instance's digits as the columns are, so to far below ε of |J||v|.
+  GaussianProbes draw(7);
+  const std::vector<Vector<T, any_size>> directions{draw.next<T>(2 * n), draw.next<T>(2 * n)};
+  const std::vector<Vector<T, any_size>> products = program->jacobian_along(x, h, directions);
+  ASSERT_EQ(products.size(), 2u);
+  const T size = std::max(T(1), T(J.cwiseAbs().maxCoeff()));
+  for (std::size_t k = 0; k < 2; ++k)
+    EXPECT_LE(distance(products[k], Vector<T, any_size>(J * directions[k])),
+              64 * epsilon<T>() * size * directions[k].cwiseAbs().sum());
+
+  // The negative: h·1.001 in the drift moves q' by 10⁻³ h |p½|, far beyond the tolerance, and its
+  // products along the same vectors are not the right map's: ∂q'/∂p moves by 10⁻³ h.
   const auto wrong = chain_program<T>(system, n, {"--h-factor", "1.001"});
   const State<T, any_size> off = wrong->step(x, h);
   EXPECT_GT(distance(off.q, expected.q), T(1) / 100000);
+  const std::vector<Vector<T, any_size>> wrong_products = wrong->jacobian_along(x, h, directions);
+  EXPECT_GT(distance(wrong_products[0], products[0]), T(1) / 1000000);
 }
 
 TYPED_TEST(ProcessMapAnySize, StepsAndDifferentiatesAProgramAtOneTwoSevenAndSixtyFourCoordinates) {
