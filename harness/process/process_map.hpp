@@ -122,9 +122,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   // kept: the floor is asked for at the same state and h more than once).
   std::optional<T> answer_noise(const State<T, N>& x, const T& h) const override {
     if (!double_program_) return std::nullopt;
-    const Vector<T, N> p = momentum_at(x);
-    std::vector<std::string> y(2 * n);
-    for (int i = 0; i < n; ++i) y[i] = to_decimal<T>(x.q[i]), y[n + i] = to_decimal<T>(p[i]);
+    const std::vector<std::string> y = point(x);
     std::string key = to_decimal<T>(h);
     for (const std::string& v : y) key += " " + v;
     if (noise_key_ != key) {
@@ -186,9 +184,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
 
   Matrix<T, twice(N), twice(N)> jacobian(const State<T, N>& x, const T& h) const override {
     const long step_index = next_jacobian_step(h);
-    const Vector<T, N> p = momentum_at(x);
-    std::vector<std::string> y(2 * n);
-    for (int i = 0; i < n; ++i) y[i] = to_decimal<T>(x.q[i]), y[n + i] = to_decimal<T>(p[i]);
+    const std::vector<std::string> y = point(x);
     const std::string step = to_decimal<T>(h);
     last_unit_ = jacobian_unit();
     if (process_->uses_extension(jacobian_extension)) return own_jacobian(y, h, step_index);
@@ -242,9 +238,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
       return out;
     }
     const long step_index = next_jacobian_step(h);
-    const Vector<T, N> p = momentum_at(x);
-    std::vector<std::string> y(2 * n);
-    for (int i = 0; i < n; ++i) y[i] = to_decimal<T>(x.q[i]), y[n + i] = to_decimal<T>(p[i]);
+    const std::vector<std::string> y = point(x);
     const std::string step = to_decimal<T>(h);
     last_unit_ = jacobian_unit();
     std::string unit;  // a double program's measured unit, a decimal
@@ -374,37 +368,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   // keep y's decimal. 2 requests a direction.
   template <class Direction>
   Differences along(MapProcess& process, int digits, const std::string& step, const std::vector<std::string>& y,
-                    int count, const Direction& direction, int exponent, const T& h, int multiple = 1) const {
-    using std::abs, std::max, std::pow;
-    Differences result(static_cast<std::size_t>(count), std::vector<R>(2 * n));
-    std::vector<R> centre(2 * n);
-    for (int j = 0; j < 2 * n; ++j) centre[j] = from_decimal<R>(y[j]);
-    for (int k = 0; k < count; ++k) {
-      const std::vector<R> u = direction(k);
-      // the entry that sets the scale: the largest |u_j| / max(1, |y_j|)
-      int widest = -1;
-      R ratio = 0;
-      for (int j = 0; j < 2 * n; ++j) {
-        const R r = R(abs(u[j])) / max(R(1), R(abs(centre[j])));
-        if (r > ratio) ratio = r, widest = j;
-      }
-      if (widest < 0) continue;  // u = 0: J·u = 0
-      const R scale = max(R(1), R(abs(centre[widest]))) / R(abs(u[widest]));
-      const R delta = multiple * pow(R(10), -exponent) * scale;
-      std::array<std::vector<R>, 2> images{std::vector<R>(2 * n), std::vector<R>(2 * n)};
-      for (int side = 0; side < 2; ++side) {
-        nlohmann::json request = {
-            {"h", step}, {"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
-        for (int i = 0; i < 2 * n; ++i)
-          request[i < n ? "q" : "p"].push_back(
-              u[i] == 0 ? y[i]
-                        : to_decimal<R>(side == 0 ? R(centre[i] + delta * u[i]) : R(centre[i] - delta * u[i])));
-        images[side] = answer_state<R>(process, process.request(request), digits, h);
-      }
-      for (int i = 0; i < 2 * n; ++i) result[k][i] = (images[0][i] - images[1][i]) / (2 * delta);
-    }
-    return result;
-  }
+                    int count, const Direction& direction, int exponent, const T& h, int multiple = 1) const;
   static Columns decimals(const Differences& d) {
     Columns columns(d.size());
     for (std::size_t j = 0; j < d.size(); ++j)
@@ -430,47 +394,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   // every `recheck`-th call checked at 10 times the width and at the coarse width as columns are.
   template <class Direction>
   Differences fine_along(const std::vector<std::string>& y, const std::string& step, const T& h, int count,
-                         const Direction& direction, const std::string& epsilon_of_T) const {
-    if (!fine_) fine_ = start(fine_digits());
-    // The first Jacobian and every `recheck`-th one are computed again at 10 times the width: a
-    // program computing at the digits it was asked for gives the same matrix to about
-    // 10^(−(4D+14)/3) (the width's truncation grows 100 times), far below ε of the working
-    // precision; one that computes in fewer digits and pads its answers differs by its own
-    // rounding over the width, and the Jacobian would measure that instead of the map.
-    const bool check = jacobians_++ % recheck == 0;
-    using std::abs, std::max, std::pow;
-    const auto narrow = along(*fine_, fine_digits(), step, y, count, direction, difference_exponent(), h);
-    if (check) {
-      // Against a coarse width 10^(-ceil(D/3)) too, which a program computing in fewer digits
-      // still resolves: padding below its precision makes both narrow widths see no change at
-      // all (a zero column agrees with itself). At the coarse width the truncation is about
-      // 10^(-2D/3) times the map's third derivative; a change above 10^(-ceil(D/6))·|J| would
-      // need a third derivative near 10^(D/2).
-      const auto wide = along(*fine_, fine_digits(), step, y, count, direction, difference_exponent() - 1, h);
-      const auto coarse = along(*fine_, fine_digits(), step, y, count, direction, coarse_exponent(), h);
-      R largest = 1, change = 0, coarse_change = 0;
-      for (int j = 0; j < count; ++j)
-        for (int i = 0; i < 2 * n; ++i)
-          largest = max(largest, R(abs(narrow[j][i]))),
-          change = max(change, R(abs(narrow[j][i] - wide[j][i]))),
-          coarse_change = max(coarse_change, R(abs(narrow[j][i] - coarse[j][i])));
-      if (!(coarse_change <= pow(R(10), -((coarse_exponent() + 1) / 2)) * largest))
-        unmeasurable("its Jacobian by central differences at width 10^-" +
-                     std::to_string(difference_exponent()) + " differs by " +
-                     to_decimal<R>(coarse_change, 3) + " from the one at width 10^-" +
-                     std::to_string(coarse_exponent()) + " (|J| = " + to_decimal<R>(largest, 3) +
-                     ")");
-      if (!(change <= from_decimal<R>(epsilon_of_T) * largest))
-        unmeasurable("its Jacobian by central differences changes by " +
-                     to_decimal<R>(change, 3) + " between widths 10^-" +
-                     std::to_string(difference_exponent()) + " and 10^-" +
-                     std::to_string(difference_exponent() - 1) +
-                     ", more than the working precision's epsilon " +
-                     to_decimal<R>(from_decimal<R>(epsilon_of_T), 3) + " times |J| = " +
-                     to_decimal<R>(largest, 3));
-    }
-    return narrow;
-  }
+                         const Direction& direction, const std::string& epsilon_of_T) const;
 
   // The program's own Jacobian (extension "jacobian") at y: one request marked "jacobian": true,
   // its answer's "jacobian", 2n rows of 2n decimal strings of D digits, row i = ∂y'_i/∂(q, p)
@@ -480,62 +404,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   // times their difference (the truncation's size, over-estimated) + 100·10^(c-D)·max(1, |J|)
   // (the rounding's); beyond that it is a wrong entry, a finding naming the step and the entry.
   Matrix<T, twice(N), twice(N)> own_jacobian(const std::vector<std::string>& y, const T& h,
-                                       long step_index) const {
-    nlohmann::json request = {{"h", to_decimal<T>(h)},
-                              {"q", nlohmann::json::array()},
-                              {"p", nlohmann::json::array()},
-                              {jacobian_extension, true}};  // the answer must carry it
-    for (int i = 0; i < 2 * n; ++i) request[i < n ? "q" : "p"].push_back(y[i]);
-    const nlohmann::json answer = process_->request(request);
-    const std::size_t size = 2 * n;
-    if (!answer.contains(jacobian_extension) || !answer[jacobian_extension].is_array() ||
-        answer[jacobian_extension].size() != size)
-      process_->fail_answer(
-          "it took up the extension \"jacobian\" and its answer has no \"jacobian\" of " +
-          std::to_string(size) + " rows (got " +
-          (answer.contains(jacobian_extension) ? quoted_text(answer[jacobian_extension].dump(), 200)
-                                               : std::string("none")) +
-          ")");
-    Matrix<T, twice(N), twice(N)> jacobian(2 * n, 2 * n);
-    for (int i = 0; i < 2 * n; ++i) {
-      const nlohmann::json& row = answer[jacobian_extension][static_cast<std::size_t>(i)];
-      if (!row.is_array() || row.size() != size)
-        process_->fail_answer("jacobian[" + std::to_string(i) + "] is " + quoted_text(row.dump(), 200) +
-                              ", not a row of " + std::to_string(size) + " decimal strings");
-      for (int j = 0; j < 2 * n; ++j)
-        jacobian(i, j) = answer_decimal<T>(*process_, row[static_cast<std::size_t>(j)],
-                                    "jacobian[" + std::to_string(i) + "][" + std::to_string(j) + "]",
-                                    digits_);
-    }
-    const long answered = process_->requests();
-    if (step_index % recheck != 0) return jacobian;
-    PrecisionGuard guard(digits_ + 10);
-    using std::abs, std::max, std::pow;
-    const std::string step = to_decimal<T>(h);
-    const auto coarse = differences(*process_, digits_, step, y, coarse_exponent(), h);
-    const auto coarser = differences(*process_, digits_, step, y, coarse_exponent() - 1, h);
-    R largest = 1;
-    for (int j = 0; j < 2 * n; ++j)
-      for (int i = 0; i < 2 * n; ++i) largest = max(largest, R(abs(coarse[j][i])));
-    const R rounding = 100 * pow(R(10), coarse_exponent() - digits_) * largest;
-    for (int j = 0; j < 2 * n; ++j)
-      for (int i = 0; i < 2 * n; ++i) {
-        const R own = from_decimal<R>(to_decimal<T>(jacobian(i, j)));
-        const R allowed = 4 * R(abs(coarse[j][i] - coarser[j][i])) + rounding;
-        if (!(abs(own - coarse[j][i]) <= allowed))
-          throw UnmeasurableJacobian(
-              "the map program " + name() + " sent a wrong Jacobian (extension \"jacobian\") at h = " +
-              shortest(h) + ", step " + std::to_string(step_index) + " of that run (request " +
-              std::to_string(answered) + "): entry jacobian[" + std::to_string(i) + "][" +
-              std::to_string(j) + "] = d" + (i < n ? "q'" : "p'") + "[" + std::to_string(i % n) +
-              "]/d" + (j < n ? "q" : "p") + "[" + std::to_string(j % n) + "] is " +
-              to_decimal<R>(own, 10) + ", while central differences of its own steps at width 10^-" +
-              std::to_string(coarse_exponent()) + " give " + to_decimal<R>(coarse[j][i], 10) +
-              " (they may differ by " + to_decimal<R>(allowed, 3) +
-              "): symplecticity would judge a matrix that is not the map's derivative");
-      }
-    return jacobian;
-  }
+                                       long step_index) const;
 
   // The index of this Jacobian along its h's run: claims ask for them step by step, one h after
   // another.
@@ -558,41 +427,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   // rounding makes Δ⁴ an integer number of bins, often 0: with two directions a Verlet whose force
   // kept 30 bits measured 1500 ε at one state where four find 6·10⁴. In MPFR at
   // the caller's PrecisionGuard.
-  R noise_near(const std::string& step, const std::vector<std::string>& y, const T& h) const {
-    using std::abs, std::max, std::pow, std::sqrt;
-    const auto image = [&](const std::vector<R>& at) {
-      nlohmann::json request = {{"h", step}, {"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
-      for (int i = 0; i < 2 * n; ++i) request[i < n ? "q" : "p"].push_back(to_decimal<R>(at[i]));
-      return answer_state<R>(*process_, process_->request(request), digits_, h);
-    };
-    std::vector<R> centre(2 * n);
-    for (int j = 0; j < 2 * n; ++j) centre[j] = from_decimal<R>(y[j]);
-    const std::vector<R> f0 = image(centre);
-    R noise = 0;
-    for (const int exponent : {digits_ / 2, double_exponent() + 2}) {
-      const R spacing = pow(R(10), -exponent);
-      for (int direction = 0; direction < 4; ++direction) {
-        // (1, 1, …), (1, −1, …), q alone, p alone
-        const auto component = [&](int j) {
-          return direction == 0 ? 1 : direction == 1 ? (j % 2 ? -1 : 1) : (j < n) == (direction == 2) ? 1 : 0;
-        };
-        std::array<std::vector<R>, 4> f;  // at k = −2, −1, 1, 2
-        const int ks[4] = {-2, -1, 1, 2};
-        for (int m = 0; m < 4; ++m) {
-          std::vector<R> at = centre;
-          for (int j = 0; j < 2 * n; ++j) at[j] += ks[m] * spacing * max(R(1), R(abs(centre[j]))) * component(j);
-          f[m] = image(at);
-        }
-        for (int i = 0; i < 2 * n; ++i) {
-          const R spread = R(abs(R(f[0][i] - 4 * f[1][i] + 6 * f0[i] - 4 * f[2][i] + f[3][i]))) / sqrt(R(70));
-          noise = max(noise, spread);
-          noise_in_ulps_ = std::max(noise_in_ulps_, static_cast<double>(spread / max(R(1), R(abs(f0[i])))) /
-                                                        std::numeric_limits<double>::epsilon());
-        }
-      }
-    }
-    return noise;
-  }
+  R noise_near(const std::string& step, const std::vector<std::string>& y, const T& h) const;
 
   // UnmeasurableJacobian: the second instance's differences show that it does not compute with
   // the digits it was greeted with; `what` is the evidence. A finding about the program (its
@@ -664,6 +499,14 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     return y;
   }
 
+  // (q, p = FL(q, w)) at x as the decimals a request carries.
+  std::vector<std::string> point(const State<T, N>& x) const {
+    const Vector<T, N> p = momentum_at(x);
+    std::vector<std::string> y(2 * n);
+    for (int i = 0; i < n; ++i) y[i] = to_decimal<T>(x.q[i]), y[n + i] = to_decimal<T>(p[i]);
+    return y;
+  }
+
   // p = FL(q, w), taken from the program's last answer when x is the state it gave (a run's next
   // step starts there): no evaluation of L, and the p the program wrote rather than its round
   // trip through w.
@@ -707,3 +550,5 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
 };
 
 }  // namespace vivv
+
+#include "harness/process/process_map_differences.hpp"  // the definitions of the differences above
