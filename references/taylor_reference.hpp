@@ -22,8 +22,10 @@
 #include <functional>
 #include <future>
 #include <list>
+#include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -71,34 +73,75 @@ class TaylorReference {
   // F_t(start) from the dense trajectory of `start` (t of either sign).
   State<T, N> advance(const State<T, N>& start, const T& t) const {
     std::lock_guard<std::mutex> lock(shared_->mutex);
-    return TaylorFlow<System>::state_of(entry(start).state_at(t, shared_->flow));
+    return answer(start, t, [&]() -> Cached& { return entry(start); });
   }
 
   // F_t(start) for every t of `times`, from the same cached trajectory.
   std::vector<State<T, N>> advance_many(const State<T, N>& start,
                                         const std::vector<T>& times) const {
     std::lock_guard<std::mutex> lock(shared_->mutex);
-    Cached& cached = entry(start);
+    Cached* cached = nullptr;  // looked up once, and only if an answer is not known
     std::vector<State<T, N>> states;
     states.reserve(times.size());
     for (const T& t : times)
-      states.push_back(TaylorFlow<System>::state_of(cached.state_at(t, shared_->flow)));
+      states.push_back(answer(start, t, [&]() -> Cached& { return cached ? *cached : *(cached = &entry(start)); }));
     return states;
+  }
+
+  // An answer of the flow: F_t(start) from `start`, or the check's state at `t` from `start`.
+  struct Answer {
+    State<T, N> start;
+    T t;
+    State<T, N> state;
+  };
+
+  // From now on every answer of advance is kept (the cross-check's are), for answers(): what a
+  // cache on disk keeps between runs (harness/context/reference_cache.hpp).
+  void keep_answers() const {
+    std::lock_guard<std::mutex> lock(shared_->mutex);
+    shared_->keeping = true;
+  }
+
+  // Answers this flow gave before, in an earlier run of the same executable, precision and system:
+  // advance and estimate_error return them without integrating. Only a flow that computes to the
+  // bit what it gave then may be told them (the cache's key says so).
+  void recall(const std::vector<Answer>& advanced, const std::vector<Answer>& checked) const {
+    std::lock_guard<std::mutex> lock(shared_->mutex);
+    shared_->keeping = true;
+    for (const Answer& a : advanced) shared_->answers.emplace(Asked{a.start, a.t}, a.state);
+    for (const Answer& a : checked)
+      if (!shared_->checked_state(a.start, a.t)) shared_->checked.push_back(a);
+  }
+
+  // Every answer kept (keep_answers, recall): advance's, and the cross-check's.
+  std::pair<std::vector<Answer>, std::vector<Answer>> answers() const {
+    std::lock_guard<std::mutex> lock(shared_->mutex);
+    std::vector<Answer> advanced;
+    for (const auto& [asked, state] : shared_->answers) advanced.push_back({asked.start, asked.t, state});
+    return {advanced, {shared_->checked.begin(), shared_->checked.end()}};
   }
 
   // ‖advance(start, t) − F̃_t(start)‖_max with F̃ an independent Taylor run (higher order, other
   // steps) at step tolerance check_step_tolerance(), of order check_order(): the one
   // start_check(start, t) began, or one run here.
+  // A check once done is kept (copies share it: the cases of a run that share this flow,
+  // harness/context/shared_references.hpp, check it once).
   T estimate_error(const State<T, N>& start, const T& t) const {
     std::future<State<T, N>> begun;
+    std::optional<State<T, N>> done;
     {
       std::lock_guard<std::mutex> lock(shared_->mutex);
-      if (shared_->check.valid() && shared_->check_start.q == start.q && shared_->check_start.w == start.w &&
-          shared_->check_end == t)
+      done = shared_->checked_state(start, t);
+      if (!done && shared_->check.valid() && same_state(shared_->check_start, start) && shared_->check_end == t)
         begun = std::move(shared_->check);
     }
-    const State<T, N> checked = begun.valid() ? begun.get() : check_flow()->advance(start, t);
-    return state_distance<T, N>(advance(start, t), checked);
+    if (!done) {
+      done = begun.valid() ? begun.get() : check_flow()->advance(start, t);
+      std::lock_guard<std::mutex> lock(shared_->mutex);
+      shared_->checked.push_front({start, t, *done});
+      if (shared_->checked.size() > 8) shared_->checked.pop_back();
+    }
+    return state_distance<T, N>(advance(start, t), *done);
   }
 
   // Begins the check's integration from `start` to `t` on a thread of its own, beside whatever this
@@ -112,7 +155,7 @@ class TaylorReference {
     if constexpr (!is_mpfr_v<T>) {
       std::shared_ptr<TaylorFlow<System>> flow = check_flow();  // recorded here, integrated there
       std::lock_guard<std::mutex> lock(shared_->mutex);
-      if (shared_->check.valid()) return;
+      if (shared_->check.valid() || shared_->checked_state(start, t)) return;
       shared_->check_start = start;
       shared_->check_end = t;
       shared_->check = std::async(std::launch::async, [flow, start, t] { return flow->advance(start, t); });
@@ -159,11 +202,13 @@ class TaylorReference {
 
   // `report(reached, target)` after every step of the flow, and `check_report` after every step
   // of its check (copies of this reference share them): the check's progress under its own
-  // name, not read as the flow starting again.
+  // name, not read as the flow starting again. A case that shares the flow with later ones
+  // clears them when it ends (set_progress({})): once this returns, neither is called again.
   void set_progress(std::function<void(const T&, const T&)> report,
                     std::function<void(const T&, const T&)> check_report = {}) const {
     std::lock_guard<std::mutex> lock(shared_->mutex);
     shared_->flow.integrator().on_progress = std::move(report);
+    std::lock_guard<std::mutex> progress_lock(shared_->progress_mutex);
     shared_->check_progress = std::move(check_report);
   }
 
@@ -185,6 +230,35 @@ class TaylorReference {
     }
   };
 
+  using Index = Eigen::Index;
+
+  // A question to the flow, ordered by t and then the start's entries (exact comparisons).
+  struct Asked {
+    State<T, N> start;
+    T t;
+  };
+  struct AskedOrder {
+    bool operator()(const Asked& a, const Asked& b) const {
+      if (a.t != b.t) return a.t < b.t;
+      for (Index i = 0; i < a.start.q.size(); ++i)
+        if (a.start.q[i] != b.start.q[i]) return a.start.q[i] < b.start.q[i];
+      for (Index i = 0; i < a.start.w.size(); ++i)
+        if (a.start.w[i] != b.start.w[i]) return a.start.w[i] < b.start.w[i];
+      return false;
+    }
+  };
+  // F_t(start): the answer kept, or the trajectory's (trajectory() finds it), kept if answers are.
+  // Called with the mutex held.
+  template <class Trajectory>
+  State<T, N> answer(const State<T, N>& start, const T& t, Trajectory&& trajectory) const {
+    if (shared_->keeping) {
+      if (auto known = shared_->answers.find(Asked{start, t}); known != shared_->answers.end()) return known->second;
+    }
+    State<T, N> state = TaylorFlow<System>::state_of(trajectory().state_at(t, shared_->flow));
+    if (shared_->keeping) shared_->answers.emplace(Asked{start, t}, state);
+    return state;
+  }
+
   // The flow and the trajectories computed so far, shared by copies of the reference.
   struct Shared {
     Shared(const System& system, const T& step_tolerance) : flow(system, step_tolerance) {}
@@ -194,15 +268,29 @@ class TaylorReference {
       cancelled = true;
       if (check.valid()) check.wait();
     }
+    // The check's end state from `start` to `end`, if a check of them is done.
+    std::optional<State<T, N>> checked_state(const State<T, N>& start, const T& end) const {
+      for (const Answer& c : checked)
+        if (same_state(c.start, start) && c.t == end) return c.state;
+      return std::nullopt;
+    }
     std::mutex mutex;
     TaylorFlow<System> flow;
-    std::function<void(const T&, const T&)> check_progress;  // the cross-check's (set_progress)
+    // The cross-check's (set_progress), called under its own mutex from the check's thread, which
+    // `mutex` would hold up while the flow integrates.
+    std::mutex progress_mutex;
+    std::function<void(const T&, const T&)> check_progress;
     std::list<Cached> cache;  // most recently used first
     std::atomic<bool> cancelled{false};
     State<T, N> check_start;  // the check start_check began, from check_start to check_end
     T check_end = 0;
     std::future<State<T, N>> check;
+    std::list<Answer> checked;  // the checks done, most recent first (eight kept; the check's end is t)
+    bool keeping = false;                               // keep_answers, recall
+    std::map<Asked, State<T, N>, AskedOrder> answers;  // advance's, while keeping
   };
+
+  static bool same_state(const State<T, N>& a, const State<T, N>& b) { return a.q == b.q && a.w == b.w; }
 
   // Thrown by a check's progress when its reference is gone (Shared's destructor).
   struct CheckCancelled {};
@@ -211,11 +299,10 @@ class TaylorReference {
   // the reference is destroyed).
   std::shared_ptr<TaylorFlow<System>> check_flow() const {
     auto flow = std::make_shared<TaylorFlow<System>>(system_, check_step_tolerance(), check_order());
-    std::lock_guard<std::mutex> lock(shared_->mutex);
-    flow->integrator().on_progress = [shared = shared_.get(), report = shared_->check_progress](const T& reached,
-                                                                                             const T& target) {
+    flow->integrator().on_progress = [shared = shared_.get()](const T& reached, const T& target) {
       if (shared->cancelled) throw CheckCancelled{};
-      if (report) report(reached, target);
+      std::lock_guard<std::mutex> lock(shared->progress_mutex);
+      if (shared->check_progress) shared->check_progress(reached, target);
     };
     return flow;
   }
@@ -225,7 +312,7 @@ class TaylorReference {
   Cached& entry(const State<T, N>& start) const {
     std::list<Cached>& cache = shared_->cache;
     for (auto it = cache.begin(); it != cache.end(); ++it) {
-      if (it->start.q == start.q && it->start.w == start.w) {
+      if (same_state(it->start, start)) {
         cache.splice(cache.begin(), cache, it);
         return cache.front();
       }

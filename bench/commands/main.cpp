@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     if (args.size() == 1 && args[0] == "reference") return vivv::run_reference_benchmark(std::cout);
     if (args.size() == 1 && args[0] == "del") return vivv::run_del_benchmark(std::cout);
     if (args.size() == 1 && args[0] == "size") return vivv::run_size_benchmark(std::cout);
+    if (args.size() == 2 && args[0] == "size") return vivv::run_size_benchmark(std::cout, args[1]);
     if (args.size() == 1 && args[0] == "process")
       return vivv::run_process_benchmark(std::cout,
                                          std::filesystem::read_symlink("/proc/self/exe").string());
@@ -30,6 +31,7 @@ int main(int argc, char** argv) {
     std::cerr << "vivv-bench: " << error.what() << "\n";
     return 2;
   }
-  std::cerr << "usage: vivv-bench reference|del|process|size (or vivv bench NAME)\n";
+  std::cerr << "usage: vivv-bench reference|del|process|size [chain_double|chain_mpfr|gravity_double] (or vivv bench "
+               "NAME)\n";
   return 2;
 }

@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -119,6 +120,7 @@ nlohmann::json measure(const FormulaSystemDefinition& definition, const State<T,
   TaylorFlow<FormulaSystem<T, any_size>> flow(system, reference_tolerance);
   State<T, any_size> end = flow.advance(y, h);  // settles the step size
   const long before = flow.report().steps;
+  const long long madds_before = flow.report().multiply_adds;
   double advanced = 0;
   const double reference_ns_per_call = 1e9 * seconds_per_call(
                                                  [&] {
@@ -128,6 +130,10 @@ nlohmann::json measure(const FormulaSystemDefinition& definition, const State<T,
                                                  },
                                                  batch);
   const double steps_per_call = static_cast<double>(flow.report().steps - before) / advanced;
+  // The Taylor recurrences' multiply-adds a step (O(p² · tape)): the reference's time divided by
+  // them is its cost per operation, which says whether a slope comes from the work or the memory.
+  const double madds_per_step = static_cast<double>(flow.report().multiply_adds - madds_before) /
+                                static_cast<double>(flow.report().steps - before);
   nlohmann::json row{{"system", definition.name},
                      {"n", n},
                      {"count", count},
@@ -135,7 +141,10 @@ nlohmann::json measure(const FormulaSystemDefinition& definition, const State<T,
                      {"newton_iterations", report.iterations},
                      {"del_ns", del_ns},
                      {"reference_ns", reference_ns_per_call / steps_per_call},
-                     {"reference_order", flow.order()}};
+                     {"reference_order", flow.order()},
+                     {"reference_tape_operations", flow.report().tape_operations},
+                     {"reference_multiply_adds", madds_per_step},
+                     {"reference_ns_per_multiply_add", reference_ns_per_call / steps_per_call / madds_per_step}};
   // What symplecticity does per step above symplecticity_dense_limit coordinates: the sparse
   // blocks, the generating form's defect, B_e's LU and the carried pairs through J.
   Vector<T, any_size> carried = Vector<T, any_size>::Ones(2 * n);
@@ -180,28 +189,33 @@ double slope(const nlohmann::json& rows, const char* column, int lo, int hi) {
 void print_rows(std::ostream& out, const nlohmann::json& rows, const std::string& title) {
   out << title << "\n";
   char line[240];
-  std::snprintf(line, sizeof line, "%6s %6s %9s %7s %14s %16s %18s %14s\n", "count", "n", "entries", "newton",
-                "DEL step (us)", "reference (us)", "symplecticity (us)", "generating (us)");
+  std::snprintf(line, sizeof line, "%6s %6s %9s %7s %14s %16s %18s %14s %10s %12s\n", "count", "n", "entries", "newton",
+                "DEL step (us)", "reference (us)", "symplecticity (us)", "generating (us)", "tape ops",
+                "ns/mult-add");
   out << line;
   for (const auto& row : rows) {
     const std::string symplecticity =
         row.contains("symplecticity_ns") ? std::to_string(static_cast<long long>(row["symplecticity_ns"].get<double>() / 1e3))
                                          : "-";
-    std::snprintf(line, sizeof line, "%6d %6d %9ld %7d %14.1f %16.1f %18s %14.1f\n", row["count"].get<int>(),
+    std::snprintf(line, sizeof line, "%6d %6d %9ld %7d %14.1f %16.1f %18s %14.1f %10d %12.2f\n", row["count"].get<int>(),
                   row["n"].get<int>(), row["hessian_entries"].get<long>(), row["newton_iterations"].get<int>(),
                   row["del_ns"].get<double>() / 1e3, row["reference_ns"].get<double>() / 1e3, symplecticity.c_str(),
-                  row["probes_ns"].get<double>() / 1e3);
+                  row["probes_ns"].get<double>() / 1e3, row["reference_tape_operations"].get<int>(),
+                  row["reference_ns_per_multiply_add"].get<double>());
     out << line;
   }
 }
 
 }  // namespace
 
-int run_size_benchmark(std::ostream& out) {
+int run_size_benchmark(std::ostream& out, const std::string& only) {
+  if (!only.empty() && only != "chain_double" && only != "chain_mpfr" && only != "gravity_double")
+    throw std::invalid_argument("bench size: '" + only + "' is none of chain_double, chain_mpfr, gravity_double");
   nlohmann::json summary = nlohmann::json::object();
   const auto run = [&](const std::string& key, const std::string& title, const std::vector<int>& counts,
                        int symplecticity_up_to, const std::function<nlohmann::json(int, bool)>& one, int lo, int hi,
                        double target) {
+    if (!only.empty() && key != only) return;
     nlohmann::json rows = nlohmann::json::array();
     for (int count : counts) {
       rows.push_back(one(count, count <= symplecticity_up_to));

@@ -77,6 +77,9 @@ struct RunOptions {
   // --process-timeout: the seconds such a program has for each answer.
   bool allow_process = false;
   double process_timeout = 30;
+  // --reference-cache DIR: Taylor reference flows keep their answers there between runs
+  // (harness/context/reference_cache.hpp).
+  std::optional<std::string> reference_cache;
 };
 
 // The default suite: every case file in the source tree's cases/suite, sorted.
@@ -92,10 +95,12 @@ int usage(std::ostream& out, int code);
 int run_help(std::ostream& out);
 
 // Runs the cases in up to `jobs` worker processes (MPFR's working precision
-// is process-wide in Boost 1.74, so parallel cases need processes, not threads).
-// Each case's result, in order; under --keep-going a case refused as bad input is
-// {"refused": message} (each case then runs in a worker process, so that a --max-seconds budget
-// that ends it leaves the others).
+// is process-wide in Boost 1.74, so parallel cases need processes, not threads). A worker that
+// finished a case asks for the next, and takes one on the same reference flow first, which it
+// keeps (harness/context/shared_references.hpp); without --jobs one process keeps the flows the
+// cases after it need. Each case's result, in order; under --keep-going a case refused as bad
+// input is {"refused": message} (each case then runs in a worker process of its own, so that a
+// --max-seconds budget that ends it leaves the others).
 std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const RunOptions& options);
 
 // `check(spec)` (reading a case file and checking it against the options) under the --max-seconds
@@ -104,8 +109,8 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
 CaseSpec within_reading_budget(const std::string& file, const RunOptions& options,
                                const std::function<CaseSpec()>& read);
 
-// Before any work: DIR must be a directory vivv can create and write in.
-void check_output_directory(const std::string& out);
+// Before any work: DIR must be a directory vivv can create and write in (`option` names it).
+void check_output_directory(const std::string& out, const std::string& option = "--out");
 // Writes DIR/report.json, report.html and junit.xml, prints the claims table;
 // the exit code of the verdicts.
 int write_reports(const std::string& out, const nlohmann::json& report, bool verbose);

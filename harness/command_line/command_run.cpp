@@ -44,12 +44,12 @@ namespace fs = std::filesystem;
 namespace vivv::command_line {
 
 // Before any work: DIR must be a directory vivv can create and write in.
-void check_output_directory(const std::string& out) {
+void check_output_directory(const std::string& out, const std::string& option) {
   std::error_code error;
   if (fs::exists(out, error) && !fs::is_directory(out, error))
-    throw BadInput("--out: '" + out + "' exists and is not a directory");
+    throw BadInput(option + ": '" + out + "' exists and is not a directory");
   fs::create_directories(out, error);
-  if (error) throw BadInput("--out: cannot create '" + out + "': " + error.message());
+  if (error) throw BadInput(option + ": cannot create '" + out + "': " + error.message());
   // The four files are replaced by renames at the end: one that is a directory (or a device, a
   // FIFO) would fail there, after every case computed and with the others already replaced.
   for (const char* name : {"report.json", "report.html", "junit.xml", "report.csv"}) {
@@ -62,7 +62,7 @@ void check_output_directory(const std::string& out) {
   std::string probe = (fs::path(out) / ".vivv-write-test-XXXXXX").string();
   DeferInterrupts defer;
   int fd = mkstemp(probe.data());
-  if (fd < 0) throw BadInput("--out: cannot write in '" + out + "'");
+  if (fd < 0) throw BadInput(option + ": cannot write in '" + out + "'");
   close(fd);
   fs::remove(probe, error);
 }
@@ -143,6 +143,7 @@ static nlohmann::json select_claims(std::vector<CaseSpec>& specs, const std::vec
 int command_run(const std::vector<std::string>& args, const std::string& command_line) {
   RunOptions options = parse_run_options(args);
   check_output_directory(options.out);
+  if (options.reference_cache) check_output_directory(*options.reference_cache, "--reference-cache");
   std::vector<CaseSpec> specs;
   std::map<std::string, std::string> names;
   for (const auto& file : options.case_files) {

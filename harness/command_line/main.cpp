@@ -50,12 +50,14 @@ int main(int argc, char** argv) {
       return command_list();
     }
     if (command == "bench") {
-      if (args.size() != 1 ||
+      const bool size_table = args.size() == 2 && args[0] == "size";  // `vivv bench size gravity_double`
+      if ((args.size() != 1 && !size_table) ||
           (args[0] != "reference" && args[0] != "del" && args[0] != "process" && args[0] != "size")) {
         std::cerr << "vivv bench: expected one of: reference (the Taylor reference flow against "
                      "Boost.Odeint), del (a DEL step against the L evaluations it needs), process "
                      "(protocol vivv-map/1's overhead per step against a DEL step), size (the cost of a DEL step, a "
-                     "reference step and a symplecticity check against the number of coordinates)\n";
+                     "reference step and a symplecticity check against the number of coordinates; size chain_double, "
+                     "chain_mpfr or gravity_double: that table alone)\n";
         return exit_bad_input;
       }
       // The benchmarks are a program of their own beside vivv (bench/commands/main.cpp), so that
@@ -68,7 +70,8 @@ int main(int argc, char** argv) {
                          "bootstrap.sh slow builds it)");
       std::cout.flush();
       const std::string name = "vivv-bench";
-      std::vector<char*> argv{const_cast<char*>(name.c_str()), args[0].data(), nullptr};
+      std::vector<char*> argv{const_cast<char*>(name.c_str()), args[0].data(), nullptr, nullptr};
+      if (size_table) argv[2] = args[1].data();
       execv(bench.c_str(), argv.data());
       return bad_input("vivv bench: cannot run " + bench.string() + ": " + std::strerror(errno));
     }

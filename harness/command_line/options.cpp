@@ -47,7 +47,7 @@ int bad_input(const std::string& message) {
 }
 
 
-std::string default_suite_directory() { return std::string(VIVV_SOURCE_DIR) + "/cases/suite"; }
+std::string default_suite_directory() { return (fs::path(VIVV_SOURCE_DIR) / "cases" / "suite").string(); }
 
 // The case file as report.json names it: relative to the source tree when it
 // lies inside it (the same bytes from any checkout and working directory),
@@ -146,6 +146,11 @@ RunOptions parse_run_options(const std::vector<std::string>& args) {
     else if (arg == "--shard") options.shard = parse_shard(value());
     else if (arg == "--max-seconds") options.max_seconds = parse_integer(arg, value(), 1, 1000000);
     else if (arg == "--progress") options.progress = true;
+    else if (arg == "--reference-cache") {
+      options.reference_cache = value();
+      if (options.reference_cache->rfind("--", 0) == 0)
+        throw BadInput("--reference-cache: expected a directory, got the option '" + *options.reference_cache + "'");
+    }
     else if (arg == "--quiet") options.progress = false;
     else if (arg == "--verbose") options.verbose = true;
     else if (arg == "--refine") options.refine = true;
@@ -200,7 +205,7 @@ int usage(std::ostream& out, int code) {
          "[--shard I/N] [--refine]\n"
          "                [--max-seconds S] [--keep-going] [--baseline OLD/report.json "
          "[--baseline-tolerance X]]\n"
-         "                [--allow-process [--process-timeout S]]\n"
+         "                [--allow-process [--process-timeout S]] [--reference-cache DIR]\n"
          "                [--progress|--quiet] [--verbose]\n"
          "       vivv report REPORT.json [MORE.json ...] --out DIR [--verbose]\n"
          "       vivv list\n"
@@ -254,6 +259,12 @@ int run_help(std::ostream& out) {
          "  --baseline-tolerance X\n"
          "                     the allowed growth of the error constant, a fraction (default 0.1: "
          "10 %)\n"
+         "  --reference-cache DIR\n"
+         "                     keep the Taylor reference flows' answers in DIR and reuse them in the "
+         "next run\n"
+         "                     of this same vivv on the same system, scalar and precision (the same "
+         "numbers\n"
+         "                     to the bit; another build's or another system's are not used)\n"
          "  --keep-going       a case refused while it runs (bad input, past its budget) is "
          "recorded as\n"
          "                     refused in the reports and the others keep their results; exit "

@@ -4,6 +4,7 @@
 #include <poll.h>
 #include <signal.h>
 #include <sys/prctl.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -24,6 +25,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -34,6 +36,7 @@
 #include "harness/command_line/command_line.hpp"
 #include "harness/process/program.hpp"
 #include "harness/run/run_case.hpp"
+#include "harness/context/shared_references.hpp"
 #include "reports/report.hpp"
 #include "core/platform/signals.hpp"
 #include "core/platform/text.hpp"
@@ -266,24 +269,91 @@ class NoteInterrupts {
   std::array<struct sigaction, 6> previous_{};
 };
 
-// Runs the cases in up to `jobs` worker processes (MPFR's working precision
-// is process-wide in Boost 1.74, so parallel cases need processes, not threads).
-// Each case's result, in order; under --keep-going a case refused as bad input is
-// {"refused": message} (each case then runs in a worker process, so that a --max-seconds budget
-// that ends it leaves the others).
+// Each case's reference key (harness/context/shared_references.hpp), as it will run: --scalar and
+// --digits applied.
+std::vector<std::string> reference_keys(const std::vector<CaseSpec>& specs, const RunOptions& options) {
+  std::vector<std::string> keys;
+  for (CaseSpec effective : specs) {
+    if (options.scalar) effective.scalar = *options.scalar;
+    if (options.digits) effective.digits = *options.digits;
+    keys.push_back(reference_key(effective));
+  }
+  return keys;
+}
+
+// The references the cases from `from` on still need, in a run that computes them in order: kept,
+// every other one released.
+void keep_references_from(const std::vector<std::string>& keys, std::size_t from) {
+  keep_references(std::set<std::string>(keys.begin() + static_cast<std::ptrdiff_t>(from), keys.end()));
+}
+
+// The case a worker computes next, marked started: the first not started on the reference of
+// the case it computed before (`previous`: that flow is in its memory), else the first not
+// started; none when every case has started. Workers take cases as they finish, so a long case
+// does not hold back the others, and a reference is computed at most once per worker.
+std::optional<std::size_t> next_case(std::vector<bool>& started, const std::vector<std::string>& keys,
+                                     std::optional<std::size_t> previous) {
+  std::optional<std::size_t> chosen;
+  for (std::size_t i = 0; i < started.size() && !chosen; ++i)
+    if (!started[i] && previous && keys[i] == keys[*previous]) chosen = i;
+  for (std::size_t i = 0; i < started.size() && !chosen; ++i)
+    if (!started[i]) chosen = i;
+  if (chosen) started[*chosen] = true;
+  return chosen;
+}
+
+// A line from `fd` without its newline (a worker's question, the parent's answer); none at the end
+// of the stream or on an error.
+std::optional<std::string> read_line(int fd) {
+  std::string line;
+  char c = 0;
+  for (;;) {
+    const ssize_t got = ::read(fd, &c, 1);
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) return std::nullopt;
+    if (c == '\n') return line;
+    line += c;
+  }
+}
+
+bool write_line(int fd, const std::string& line) {
+  const std::string text = line + "\n";
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t put = ::write(fd, text.data() + done, text.size() - done);
+    if (put < 0 && errno == EINTR) continue;
+    if (put <= 0) return false;
+    done += static_cast<std::size_t>(put);
+  }
+  return true;
+}
 
 }  // namespace
 
 std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const RunOptions& options) {
   std::vector<nlohmann::json> results(specs.size());
+  const std::vector<std::string> keys = reference_keys(specs, options);
+  if (options.reference_cache) {
+    set_reference_cache(fs::path(*options.reference_cache));
+    try {
+      executable_fingerprint();  // read once, before any case computes or a worker forks
+    } catch (const std::exception& error) {
+      throw BadInput(error.what());
+    }
+  }
   if (options.jobs == 1 && !options.keep_going) {
     for (std::size_t i = 0; i < specs.size(); ++i) {
+      keep_references_from(keys, i);
       try {
         results[i] = run_one(specs[i], options, i, specs.size());
       } catch (const CouldNotRun& error) {
         results[i] = {{"could_not_run", recorded_message(error)}};
+      } catch (...) {
+        keep_references({});
+        throw;
       }
     }
+    keep_references({});  // before the statics of MPFR and of the process go
     return results;
   }
   // A private directory (mode 0700, unpredictable name) for the workers' results, each file
@@ -297,14 +367,8 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
   if (options.progress && pipe2(progress_pipe, O_CLOEXEC | O_NONBLOCK) != 0)
     progress_pipe[0] = progress_pipe[1] = -1;
   std::string progress_buffer;
-  auto forward_progress = [&](int wait_ms) {
-    if (progress_pipe[0] < 0) {
-      const struct timespec pause = {0, wait_ms * 1'000'000L};
-      nanosleep(&pause, nullptr);
-      return;
-    }
-    struct pollfd readable = {progress_pipe[0], POLLIN, 0};
-    if (poll(&readable, 1, wait_ms) <= 0) return;
+  auto forward_progress = [&]() {
+    if (progress_pipe[0] < 0) return;
     char chunk[4096];
     ssize_t got = 0;
     while ((got = ::read(progress_pipe[0], chunk, sizeof chunk)) > 0) progress_buffer.append(chunk, static_cast<std::size_t>(got));
@@ -313,19 +377,46 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
     std::cerr << progress_buffer.substr(0, end + 1) << std::flush;
     progress_buffer.erase(0, end + 1);
   };
+  // A worker: the case it computes (none once it was told there is no other), and the parent's end
+  // of the socket on which it asks for the next one ("next" → the case's index, or "none").
+  struct Worker {
+    std::optional<std::size_t> current;
+    int socket = -1;
+  };
   NoteInterrupts notes;
   const pid_t parent = getpid();
-  std::map<pid_t, std::size_t> running;
+  std::map<pid_t, Worker> workers;
+  std::vector<bool> started(specs.size(), false);
   std::string failures, crashes;
-  std::size_t next = 0;
-  // Waits for a worker to end, looking every 50 ms whether the run was interrupted.
-  auto reap = [&]() {
-    int status = 0;
-    pid_t pid = 0;
-    while ((pid = waitpid(-1, &status, WNOHANG)) == 0 && !interrupted_by) forward_progress(50);
-    if (pid <= 0) return;  // interrupted
-    std::size_t index = running.at(pid);
-    running.erase(pid);
+  // What the worker wrote of a case: its result, why it could not run, or why it was refused.
+  auto written = [&](std::size_t index, const char* extension) -> std::optional<std::string> {
+    std::ifstream in(work / (std::to_string(index) + extension));
+    if (!in) return std::nullopt;
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  // The case's result as its worker wrote it; false if it wrote none.
+  auto collect = [&](std::size_t index) {
+    if (auto result = written(index, ".json")) {
+      results[index] = nlohmann::json::parse(*result);
+    } else if (auto message = written(index, ".could-not-run")) {
+      results[index] = {{"could_not_run", message->empty() ? "its map program failed in the worker process" : *message}};
+    } else {
+      return false;
+    }
+    return true;
+  };
+  // A worker that ended: the case it was computing, collected, or what ended it said.
+  auto ended = [&](pid_t pid, int status) {
+    const Worker worker = workers.at(pid);
+    workers.erase(pid);
+    close(worker.socket);
+    const bool clean = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    if (!worker.current) {
+      if (!clean) failures += "a worker process failed after its cases (exit status " + std::to_string(status) + ")\n";
+      return;
+    }
+    const std::size_t index = *worker.current;
+    if (collect(index) && clean) return;
     if (WIFSIGNALED(status)) {  // no message of its own: say what ended it
       const int signal = WTERMSIG(status);
       crashes += specs[index].file + ": its worker process was ended by signal " +
@@ -333,21 +424,8 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
                  (signal == SIGKILL ? ", perhaps by the kernel for want of memory" : "") + "\n";
       return;
     }
-    // What the worker wrote of why its case could not run or was refused.
-    auto message_of = [&](const char* extension) {
-      std::ifstream in(work / (std::to_string(index) + extension));
-      std::string message((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      return message;
-    };
-    if (WIFEXITED(status) && WEXITSTATUS(status) == exit_could_not_run) {
-      const std::string message = message_of(".could-not-run");
-      results[index] = {{"could_not_run", message.empty()
-                                              ? "its map program failed in the worker process"
-                                              : message}};
-      return;
-    }
     if (options.keep_going && WIFEXITED(status) && WEXITSTATUS(status) == exit_bad_input) {
-      std::string message = message_of(".refused");
+      std::string message = written(index, ".refused").value_or("");
       while (!message.empty() && message.back() == '\n') message.pop_back();
       if (message.rfind("vivv: ", 0) == 0) message.erase(0, 6);  // the budget's stderr line
       if (const std::string unwritten = "; recorded as refused (--keep-going)";
@@ -359,22 +437,30 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
                                         : message}};
       return;
     }
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-      failures += specs[index].file + " failed in its worker process\n";
-      return;
-    }
-    std::ifstream in(work / (std::to_string(index) + ".json"));
-    results[index] = nlohmann::json::parse(in);
+    failures += specs[index].file + " failed in its worker process\n";
   };
-  while ((next < specs.size() || !running.empty()) && !interrupted_by) {
-    if (next < specs.size() && static_cast<int>(running.size()) < options.jobs) {
+  // A worker's question: its case is done (collected), and it is given the next one, or none.
+  auto answer = [&](Worker& worker) {
+    const std::optional<std::string> question = read_line(worker.socket);
+    if (!question) return;  // it ended: ended() says how
+    if (worker.current && !collect(*worker.current))
+      failures += specs[*worker.current].file + ": its worker process asked for another case without a result\n";
+    worker.current = next_case(started, keys, worker.current);
+    write_line(worker.socket, worker.current ? std::to_string(*worker.current) : "none");
+  };
+  auto unstarted = [&] { return std::find(started.begin(), started.end(), false) != started.end(); };
+  while ((unstarted() || !workers.empty()) && !interrupted_by) {
+    if (unstarted() && static_cast<int>(workers.size()) < options.jobs) {
+      const std::size_t first = *next_case(started, keys, std::nullopt);
+      int sockets[2] = {-1, -1};
+      if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sockets) != 0) sockets[0] = sockets[1] = -1;
       std::cout.flush();
       std::cerr.flush();
       pid_t pid = 0;
       {
         // The worker starts with vivv's own dispositions before any signal reaches it.
         DeferInterrupts defer;
-        pid = fork();
+        pid = sockets[0] < 0 ? -1 : fork();
         if (pid == 0) {
           notes.restore();
           if (progress_pipe[0] >= 0) {
@@ -382,6 +468,8 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
             progress_fd = progress_pipe[1];
             fcntl(progress_fd, F_SETFL, 0);  // blocking: a line is never dropped
           }
+          close(sockets[0]);
+          for (const auto& [other, worker] : workers) close(worker.socket);
           // A worker never outlives the run: when the parent ends, however (SIGKILL included),
           // the kernel sends the worker SIGTERM; a parent already gone ends the worker now.
           prctl(PR_SET_PDEATHSIG, SIGTERM);
@@ -389,32 +477,41 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
         }
       }
       if (pid == 0) {
+        // The worker's cases one after another, each result in its file; a case that could not run
+        // is recorded and the worker asks for the next one, as without --jobs. A refusal ends it, and
+        // under --keep-going so does every case (a --max-seconds budget ends the worker with its case).
         int code = 0;
-        if (options.keep_going)
-          refusal_fd = ::open((work / (std::to_string(next) + ".refused")).c_str(),
-                              O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
-        try {
-          write_exclusively(work / (std::to_string(next) + ".json"),
-                            run_one(specs[next], options, next, specs.size())
-                                .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
-        } catch (const CouldNotRun& error) {
+        std::size_t index = first;
+        for (bool more = true; more && code == 0;) {
+          keep_references({keys[index]});
+          if (options.keep_going)
+            refusal_fd = ::open((work / (std::to_string(index) + ".refused")).c_str(),
+                                O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
           try {
-            write_exclusively(work / (std::to_string(next) + ".could-not-run"),
-                              recorded_message(error));
-            code = exit_could_not_run;
-          } catch (const std::exception& unwritten) {
-            code = bad_input(std::string(error.what()) + " (and its record: " + unwritten.what() + ")");
+            write_exclusively(work / (std::to_string(index) + ".json"),
+                              run_one(specs[index], options, index, specs.size())
+                                  .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+          } catch (const CouldNotRun& error) {
+            try {
+              write_exclusively(work / (std::to_string(index) + ".could-not-run"), recorded_message(error));
+            } catch (const std::exception& unwritten) {
+              code = bad_input(std::string(error.what()) + " (and its record: " + unwritten.what() + ")");
+            }
+          } catch (const std::exception& error) {
+            // Under --keep-going the refusal is recorded, and the console lists it with the refused
+            // cases: printed here as well, it appeared twice.
+            if (refusal_fd >= 0) {
+              const std::string message = recorded_message(error);
+              [[maybe_unused]] auto put = ::write(refusal_fd, message.data(), message.size());
+              code = exit_bad_input;
+            } else {
+              code = bad_input(error.what());
+            }
           }
-        } catch (const std::exception& error) {
-          // Under --keep-going the refusal is recorded, and the console lists it with the refused
-          // cases: printed here as well, it appeared twice.
-          if (refusal_fd >= 0) {
-            const std::string message = recorded_message(error);
-            [[maybe_unused]] auto written = ::write(refusal_fd, message.data(), message.size());
-            code = exit_bad_input;
-          } else {
-            code = bad_input(error.what());
-          }
+          if (code != 0 || options.keep_going || !write_line(sockets[1], "next")) break;
+          const std::optional<std::string> reply = read_line(sockets[1]);
+          more = reply && *reply != "none";
+          if (more) index = std::stoul(*reply);
         }
         std::_Exit(code);
       }
@@ -422,24 +519,43 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
         // No worker can start (the process limit): stop those running, remove their directory,
         // and say so; nothing is left behind.
         const int reason = errno;
-        for (const auto& [running_pid, index] : running) kill(running_pid, SIGTERM);
-        for (const auto& [running_pid, index] : running) waitpid(running_pid, nullptr, 0);
+        for (int fd : sockets)
+          if (fd >= 0) close(fd);
+        for (const auto& [running_pid, worker] : workers) kill(running_pid, SIGTERM);
+        for (const auto& [running_pid, worker] : workers) waitpid(running_pid, nullptr, 0);
         std::error_code ignored;
         fs::remove_all(work, ignored);
         throw BadInput(std::string("cannot start a worker process for --jobs ") +
                        std::to_string(options.jobs) + ": " + std::strerror(reason) +
                        " (a lower --jobs, or the process limit ulimit -u, decides)");
       }
-      running[pid] = next++;
-    } else {
-      reap();
+      close(sockets[1]);
+      workers[pid] = {first, sockets[0]};
+      continue;
     }
+    // Every 50 ms at most: the workers' questions and progress lines, and the workers that ended.
+    std::vector<struct pollfd> watched;
+    std::vector<pid_t> asking;
+    if (progress_pipe[0] >= 0) watched.push_back({progress_pipe[0], POLLIN, 0});
+    for (const auto& [pid, worker] : workers) {
+      watched.push_back({worker.socket, POLLIN, 0});
+      asking.push_back(pid);
+    }
+    if (poll(watched.data(), watched.size(), 50) > 0) {
+      const std::size_t offset = progress_pipe[0] >= 0 ? 1 : 0;
+      if (offset && watched[0].revents) forward_progress();
+      for (std::size_t k = 0; k < asking.size(); ++k)
+        if (watched[offset + k].revents & POLLIN) answer(workers.at(asking[k]));
+    }
+    int status = 0;
+    pid_t pid = 0;
+    while ((pid = waitpid(-1, &status, WNOHANG)) > 0) ended(pid, status);
   }
   if (interrupted_by) {
     // Interrupted: stop the workers, remove what they wrote, and end by the same signal
     // (no report is written; an earlier one stays as it was).
-    for (const auto& [pid, index] : running) kill(pid, SIGTERM);
-    for (const auto& [pid, index] : running) waitpid(pid, nullptr, 0);
+    for (const auto& [pid, worker] : workers) kill(pid, SIGTERM);
+    for (const auto& [pid, worker] : workers) waitpid(pid, nullptr, 0);
     std::error_code ignored;
     fs::remove_all(work, ignored);
     const int signal = interrupted_by;
@@ -448,7 +564,7 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
     raise(signal);
     std::_Exit(128 + signal);
   }
-  forward_progress(0);
+  forward_progress();
   if (!progress_buffer.empty()) std::cerr << progress_buffer << "\n";
   for (int fd : progress_pipe)
     if (fd >= 0) close(fd);

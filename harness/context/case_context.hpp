@@ -26,6 +26,8 @@
 #include "harness/verdicts/claim_result.hpp"
 #include "harness/verdicts/order_fit.hpp"
 #include "harness/process/process_map.hpp"
+#include "harness/context/reference_cache.hpp"
+#include "harness/context/shared_references.hpp"
 #include "references/reference_flow.hpp"
 #include "references/taylor_reference.hpp"
 
@@ -256,8 +258,14 @@ struct CaseContext {
   const CaseSpec& spec;
   System system;
   int n;  // the system's coordinates (N, or its run-time size)
-  // Closed forms where they exist, the Taylor-series flow otherwise.
-  std::conditional_t<has_closed_form_v<System>, ReferenceFlow<System>, TaylorReference<System>> reference;
+  // Closed forms where they exist, the Taylor-series flow otherwise: shared by the run's cases on
+  // the same system, scalar and tolerance (make_reference).
+  using Reference = std::conditional_t<has_closed_form_v<System>, ReferenceFlow<System>, TaylorReference<System>>;
+  // Where the reference came from (make_reference): made here, kept from an earlier case of the
+  // run, or made here and told an earlier run's answers (--reference-cache).
+  enum class ReferenceOrigin { made, kept, recalled };
+  ReferenceOrigin reference_origin = ReferenceOrigin::made;
+  Reference reference;
   State<T, N> initial;
   T final_time;
   State<T, N> final_state;  // the reference state at final_time, computed once
@@ -291,7 +299,7 @@ struct CaseContext {
       : spec(spec_),
         system(system_),
         n(dimension_of(system_)),
-        reference(system_, reference_tolerance_for<T>(spec_.digits, spec_.discretization.process_precision == "double")),
+        reference(make_reference(spec_, system_, reference_origin)),
         final_time(from_decimal<T>(spec_.final_time)),
         order_tolerance(std::stod(spec_.order_tolerance)),
         progress(serialized(std::move(progress_))) {
@@ -305,7 +313,12 @@ struct CaseContext {
     std::shared_ptr<ProcessMap<System>> program;
     if (spec.discretization.formalism == "map" && spec.discretization.kind == "process") program = make_process_map();
     reference.set_progress(flow_progress("reference flow"), flow_progress("reference flow's cross-check"));
-    report("reference flow to T = " + spec.final_time);
+    report("reference flow to T = " + spec.final_time +
+           (reference_origin == ReferenceOrigin::kept
+                ? " (the flow an earlier case on this system made, kept for this one)"
+            : reference_origin == ReferenceOrigin::recalled
+                ? " (with the answers an earlier run of this vivv kept, --reference-cache)"
+                : ""));
     // The reference's cross-check (harness/run/run_system_impl.hpp, check_reference) is an
     // integration as long as the flow's: a Taylor reference begins it now, on a thread beside this
     // one (its progress lines are serialized with this thread's: progress_).
@@ -334,6 +347,41 @@ struct CaseContext {
     // The initial state must be inside the Lagrangian's domain and regular
     // there; otherwise this throws SingularLagrangianError naming the state.
     euler_lagrange_acceleration(system, initial.q, initial.w);
+  }
+
+  // The reference, if shared with later cases of the run, stops reporting this case's progress.
+  ~CaseContext() { reference.set_progress({}, {}); }
+  CaseContext(const CaseContext&) = delete;
+  CaseContext& operator=(const CaseContext&) = delete;
+
+  // The case's reference flow: a closed form made here (it costs nothing), a Taylor flow the one
+  // an earlier case of the run on the same system, scalar and tolerance made, if it was kept for
+  // this one (harness/context/shared_references.hpp), its trajectories and cross-checks with it.
+  static Reference make_reference(const CaseSpec& spec, const System& system, ReferenceOrigin& origin) {
+    const T tolerance =
+        reference_tolerance_for<T>(spec.digits, spec.discretization.process_precision == "double");
+    origin = ReferenceOrigin::made;
+    if constexpr (has_closed_form_v<System>) {
+      return Reference(system, tolerance);
+    } else {
+      const std::string key = reference_key(spec);
+      bool kept = false;
+      Reference reference = shared_reference<Reference>(
+          key,
+          [&] {
+            Reference made(system, tolerance);
+            if (recall_reference_answers(made, key, spec.dimension)) origin = ReferenceOrigin::recalled;
+            return made;
+          },
+          kept);
+      if (kept) origin = ReferenceOrigin::kept;
+      return reference;
+    }
+  }
+
+  // With --reference-cache, the answers the reference gave, written for the next run.
+  void save_reference_answers() const {
+    if constexpr (!has_closed_form_v<System>) keep_reference_answers(reference, reference_key(spec));
   }
 
   // A state of the run for a message: the initial state as the case file writes it, another with

@@ -150,6 +150,7 @@ void run_on_system(const System& system, CaseSpec& spec, CaseResult& result, boo
       }
     }
     result.run_costs = context.run_costs;
+    context.save_reference_answers();
     if (!refine) break;
     // --refine: halve h (double N) until every order-fitted series settles, within the budget.
     auto unsettled = unsettled_series(result.claims, context.order_tolerance);

@@ -82,7 +82,8 @@ def cache_key(case_path, options):
 
 
 def cached_run(config, case_path, options, compute):
-    """compute(out) through the cache when it is on: (Run or exception, whether it came from the cache)."""
+    """compute(reference_cache) through the cache when it is on — reference_cache the directory of the
+    reference flows' answers, or None with the cache off: (Run or exception, whether it came from the cache)."""
     from .testing import Run
 
     if not (config.getoption("vivv_cache") or config.getini("vivv_cache")):
@@ -95,7 +96,9 @@ def cached_run(config, case_path, options, compute):
     kept = pathlib.Path(cache.mkdir("vivv")) / key
     if (kept / "report.json").is_file() and (kept / "exit-code").is_file():
         return Run(int((kept / "exit-code").read_text()), (kept / "console.txt").read_text(), kept), True
-    outcome = compute(None)
+    # A run computed again (its program edited, say) reuses the reference flows' answers an earlier
+    # run kept (vivv run --reference-cache: the same numbers to the bit, from the same vivv).
+    outcome = compute(pathlib.Path(cache.mkdir("vivv-references")))
     if not isinstance(outcome, Exception) and not outcome.could_not_run:
         if kept.exists():
             shutil.rmtree(kept)
@@ -148,11 +151,12 @@ class VivvCaseFile(pytest.File):
         if not hasattr(self, "_outcome"):
             options = self.config.getini("vivv_args")
 
-            def compute(_):
+            def compute(reference_cache):
                 factory = getattr(self.config, "_tmp_path_factory", None)  # pytest's tmp_path_factory
                 out = factory.mktemp("vivv-" + self.path.stem) if factory else tempfile.mkdtemp(prefix="vivv-")
+                extra = ["--reference-cache", str(reference_cache)] if reference_cache else []
                 try:
-                    return run_vivv(str(self.path), out=out, args=options)
+                    return run_vivv(str(self.path), out=out, args=list(options) + extra)
                 except Exception as error:  # VivvError: refused, not started, beyond the timeout
                     return error
 

@@ -93,6 +93,56 @@ TEST(TaylorReferenceTest, ItsConcurrentCheckIsTheInlineOne) {
   expect_the_concurrent_check_to_be_the_inline_one<quad>();
 }
 
+// Answers kept (keep_answers) and told to a fresh flow (recall, what --reference-cache does between
+// runs) are what it returns, to the bit and without integrating: no step taken for the states asked
+// before nor for the cross-check at T, while a question not asked before integrates. The memo is
+// trusted as it is — a recalled state that is wrong is returned — which is why the cache's key holds
+// the executable's hash.
+template <class T>
+void expect_recalled_answers_to_be_returned() {
+  Pendulum<T> pendulum;
+  State<T, 1> start;
+  start.q[0] = T(1);
+  start.w[0] = T(1) / 2;
+  const T tolerance = T(1e-12) > TaylorReference<Pendulum<T>>::floor() ? T(1e-12) : TaylorReference<Pendulum<T>>::floor();
+  TaylorReference<Pendulum<T>> first(pendulum, tolerance);
+  first.keep_answers();
+  const std::vector<T> times = {T(1) / 3, T(2), T(-1)};
+  const std::vector<State<T, 1>> states = first.advance_many(start, times);
+  const T estimate = first.estimate_error(start, T(2));
+  const auto [advanced, checked] = first.answers();
+  EXPECT_EQ(advanced.size(), times.size()) << scalar_name<T>();
+  EXPECT_EQ(checked.size(), 1u) << scalar_name<T>();
+
+  TaylorReference<Pendulum<T>> second(pendulum, tolerance);
+  second.recall(advanced, checked);
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    const State<T, 1> again = second.advance(start, times[i]);
+    EXPECT_EQ(again.q[0], states[i].q[0]) << scalar_name<T>();
+    EXPECT_EQ(again.w[0], states[i].w[0]) << scalar_name<T>();
+  }
+  EXPECT_EQ(second.estimate_error(start, T(2)), estimate) << scalar_name<T>();
+  EXPECT_EQ(second.report().steps, 0) << scalar_name<T>();
+  second.advance(start, T(3));
+  EXPECT_GT(second.report().steps, 0) << scalar_name<T>();
+
+  auto wrong = advanced;
+  wrong[0].state.q[0] += 1;
+  auto wrong_check = checked;
+  wrong_check[0].state.q[0] += 1;
+  TaylorReference<Pendulum<T>> misled(pendulum, tolerance);
+  misled.recall(wrong, wrong_check);
+  EXPECT_EQ(misled.advance(start, wrong[0].t).q[0], wrong[0].state.q[0]) << scalar_name<T>();
+  EXPECT_GT(misled.estimate_error(start, T(2)), T(1) / 2) << scalar_name<T>();  // the check was not run
+}
+TEST(TaylorReferenceTest, RecalledAnswersAreReturnedWithoutIntegrating) {
+  expect_recalled_answers_to_be_returned<double>();
+  expect_recalled_answers_to_be_returned<long double>();
+  expect_recalled_answers_to_be_returned<quad>();
+  PrecisionGuard guard(40);
+  expect_recalled_answers_to_be_returned<mpfr_real>();
+}
+
 TEST(TaylorReferenceTest, ValueDependsOnlyOnStartAndTime) {
   PrecisionGuard guard(61);
   using T = mpfr_real;
