@@ -46,10 +46,11 @@ void keep_reference(const std::string& typed, const std::string& key, std::share
 
 // The reference of `key` made before in this process (then `kept` is set), or make()'s, kept if a
 // case still to run may ask for it. Kept per Reference type too: one key's flow in two scalars
-// never meets.
+// never meets. What else follows from the reference alone (the derivative check of its flow at a
+// state, run_system_impl.hpp) is kept the same way under its own `detail`, released with its key.
 template <class Reference, class Make>
-Reference shared_reference(const std::string& key, Make&& make, bool& kept_before) {
-  const std::string typed = key + '\n' + typeid(Reference).name();
+Reference shared_reference(const std::string& key, Make&& make, bool& kept_before, const std::string& detail = "") {
+  const std::string typed = key + '\n' + typeid(Reference).name() + '\n' + detail;
   kept_before = false;
   if (std::shared_ptr<const void> kept = detail::kept_reference(typed)) {
     kept_before = true;
