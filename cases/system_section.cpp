@@ -26,6 +26,12 @@ namespace {
 constexpr double bytes_read_per_operation = 2048;
 
 std::string gib(double bytes) { return three_digits(bytes / (1024.0 * 1024 * 1024)) + " GiB"; }
+// A size in the unit that reads best: KiB, MiB or GiB.
+std::string in_bytes(double bytes) {
+  if (bytes < 1024.0 * 1024) return three_digits(bytes / 1024) + " KiB";
+  if (bytes < 1024.0 * 1024 * 1024) return three_digits(bytes / (1024.0 * 1024)) + " MiB";
+  return gib(bytes);
+}
 
 // L recorded within what reading may spend, before the rest of the system is built from it: the
 // operations its sums expand to as written (core/formulas/formula_size.hpp: its sums' bounds
@@ -429,15 +435,22 @@ void check_memory(const CaseSpec& spec, const std::string& file, const std::stri
   // The largest of what the run holds at once: first-order jets through L's tape; with a dense
   // discretization, second-order jets of 1 + 2n + (2n)² numbers per operation; and for
   // symplecticity the dense 2n × 2n Jacobian of every step of the longest run.
-  double needed = operations * (1 + 2 * n) * number;
+  const double first = operations * (1 + 2 * n) * number;
+  double needed = first;
   std::string what = "for vivv's first derivatives (each operation a jet of 1 + 2n numbers)";
+  // What the case could drop to fit, said with the part that needs the memory.
+  std::string instead = "; a system of fewer coordinates, or an L of fewer operations, is what would fit";
   const bool dense = dense_second_derivatives(spec.discretization) ||
                      (spec.past_discretization && dense_second_derivatives(*spec.past_discretization)) ||
                      (spec.compare_discretization && dense_second_derivatives(*spec.compare_discretization));
   if (dense && operations * (1 + 2 * n + 4 * n * n) * number > needed) {
     needed = operations * (1 + 2 * n + 4 * n * n) * number;
     what = "for vivv's dense second derivatives (each operation a jet of 1 + 2n + (2n)^2 numbers)";
+    instead = "; only the Galerkin and TQ discretizations need them: a Q x Q rule or a map on the same L needs about " +
+              in_bytes(first);
   }
+  const double without_jacobians = needed;
+  double jacobian_bytes = 0;  // a step's Jacobian, where symplecticity's are what does not fit
   const bool symplecticity = std::find(spec.claims.begin(), spec.claims.end(), "symplecticity") != spec.claims.end();
   // A DEL map or a one-step map above symplecticity_dense_limit coordinates is judged by probes and
   // keeps no Jacobian.
@@ -449,15 +462,23 @@ void check_memory(const CaseSpec& spec, const std::string& file, const std::stri
       needed = jacobians;
       what = "for symplecticity's Jacobians (a dense 2n x 2n matrix for each of the " +
              std::to_string(spec.steps.back()) + " steps of the longest run)";
+      instead = "; without symplecticity the case needs about " + in_bytes(without_jacobians);
+      jacobian_bytes = 4 * n * n * number;
     }
   }
   const MemoryLimit limit = memory_limit();
+  // The step counts up to which symplecticity's Jacobians fit beside the rest (limit.bytes is finite here).
+  const auto fitting_steps = [&]() -> std::string {
+    if (jacobian_bytes <= 0) return "";
+    const double fitting = std::floor((limit.bytes - without_jacobians) / jacobian_bytes);
+    return fitting >= 1 ? ", and with it step counts up to " + std::to_string(static_cast<long>(fitting)) + " fit" : "";
+  };
   if (needed > limit.bytes)
     throw CaseError(file, "system.coordinates",
                     "a system of " + std::to_string(spec.dimension) + " coordinates whose L takes " +
                         std::to_string(static_cast<long>(operations)) + " operations needs about " + gib(needed) +
                         " in " + scalar + purpose + " " + what + ", more than the " + gib(limit.bytes) +
-                        " this process may take (" + limit.what + ")");
+                        " this process may take (" + limit.what + ")" + instead + fitting_steps());
 }
 
 }  // namespace vivv::case_reading

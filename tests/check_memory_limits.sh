@@ -41,4 +41,27 @@ code=0
 cat "$work/within.log"
 [ "$code" -eq 0 ] || { echo "expected exit 0 for the case within the cap, got $code"; exit 1; }
 grep -q '"verdict": "pass"' "$work/within/report.json" || { echo "global-order did not pass within the cap"; exit 1; }
-echo "refused beyond the cap with its estimate, completed within it"
+# A case refused for what one claim keeps names the claim and what would fit: symplecticity on a
+# 16-coordinate chain (the dense check, a 32 x 32 Jacobian a step) over a run of 400,000 steps keeps
+# some 6.5 GiB of Jacobians in float128; without the claim, or with fewer steps, it fits.
+"$python" - "$work" <<'EOF2'
+import json, sys
+work = sys.argv[1]
+n = 16
+L = f"sum(i = 1..{n}, v[i]^2)/2 - sum(i = 1..{n - 1}, (x[i+1] - x[i])^2)/2 - sum(i = 1..{n}, x[i]^4)/4"
+case = {"name": "jacobians-beyond-the-cap", "system": {"name": "chain", "lagrangian": L, "coordinates": [{"x": [n]}],
+                                                       "velocities": [{"v": [n]}]},
+        "initial": {"q": [str(0.1 * i) for i in range(n)], "w": ["0"] * n}, "T": "1", "steps": [50000, 100000, 200000, 400000],
+        "scalar": "float128", "discretization": {"kind": "midpoint"}, "claims": ["global-order", "symplecticity"]}
+json.dump(case, open(f"{work}/jacobians-beyond-the-cap.json", "w"))
+EOF2
+code=0
+(ulimit -v $cap_kib; exec "$vivv" run "$work/jacobians-beyond-the-cap.json" --out "$work/jacobians" --quiet) \
+  > "$work/jacobians.log" 2>&1 || code=$?
+cat "$work/jacobians.log"
+[ "$code" -eq 2 ] || { echo "expected exit 2 for the Jacobians beyond the cap, got $code"; exit 1; }
+grep -q "for symplecticity's Jacobians (a dense 2n x 2n matrix for each of the 400000 steps of the longest run)" "$work/jacobians.log" &&
+  grep -q "without symplecticity the case needs about [0-9.e-]* [KMG]iB, and with it step counts up to [0-9]* fit" "$work/jacobians.log" ||
+  { echo "the refusal does not name the claim and what would fit"; exit 1; }
+[ ! -e "$work/jacobians/report.json" ] || { echo "a report was written for a refused case"; exit 1; }
+echo "refused beyond the cap with its estimate, completed within it; symplecticity's Jacobians named with what fits"
