@@ -287,13 +287,25 @@ void keep_references_from(const std::vector<std::string>& keys, std::size_t from
   keep_references(std::set<std::string>(keys.begin() + static_cast<std::ptrdiff_t>(from), keys.end()));
 }
 
+// Each case's reference key with its initial state and T: cases that agree on it share the flow's
+// cross-check at T as well.
+std::vector<std::string> check_keys(const std::vector<CaseSpec>& specs, const std::vector<std::string>& keys) {
+  std::vector<std::string> checks;
+  for (std::size_t i = 0; i < specs.size(); ++i)
+    checks.push_back(keys[i] + '\n' + nlohmann::json({specs[i].q, specs[i].w, specs[i].final_time}).dump());
+  return checks;
+}
+
 // The case a worker computes next, marked started: the first not started on the reference of
-// the case it computed before (`previous`: that flow is in its memory), else the first not
-// started; none when every case has started. Workers take cases as they finish, so a long case
-// does not hold back the others, and a reference is computed at most once per worker.
+// the case it computed before (`previous`: that flow is in its memory) — from the same state to the
+// same T first, whose cross-check it holds too — else the first not started; none when every case
+// has started. Workers take cases as they finish, so a long case does not hold back the others,
+// and a reference is computed at most once per worker.
 std::optional<std::size_t> next_case(std::vector<bool>& started, const std::vector<std::string>& keys,
-                                     std::optional<std::size_t> previous) {
+                                     const std::vector<std::string>& checks, std::optional<std::size_t> previous) {
   std::optional<std::size_t> chosen;
+  for (std::size_t i = 0; i < started.size() && !chosen; ++i)
+    if (!started[i] && previous && checks[i] == checks[*previous]) chosen = i;
   for (std::size_t i = 0; i < started.size() && !chosen; ++i)
     if (!started[i] && previous && keys[i] == keys[*previous]) chosen = i;
   for (std::size_t i = 0; i < started.size() && !chosen; ++i)
@@ -387,6 +399,7 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
   const pid_t parent = getpid();
   std::map<pid_t, Worker> workers;
   std::vector<bool> started(specs.size(), false);
+  const std::vector<std::string> checks = check_keys(specs, keys);
   std::string failures, crashes;
   // What the worker wrote of a case: its result, why it could not run, or why it was refused.
   auto written = [&](std::size_t index, const char* extension) -> std::optional<std::string> {
@@ -445,13 +458,13 @@ std::vector<nlohmann::json> run_all(const std::vector<CaseSpec>& specs, const Ru
     if (!question) return;  // it ended: ended() says how
     if (worker.current && !collect(*worker.current))
       failures += specs[*worker.current].file + ": its worker process asked for another case without a result\n";
-    worker.current = next_case(started, keys, worker.current);
+    worker.current = next_case(started, keys, checks, worker.current);
     write_line(worker.socket, worker.current ? std::to_string(*worker.current) : "none");
   };
   auto unstarted = [&] { return std::find(started.begin(), started.end(), false) != started.end(); };
   while ((unstarted() || !workers.empty()) && !interrupted_by) {
     if (unstarted() && static_cast<int>(workers.size()) < options.jobs) {
-      const std::size_t first = *next_case(started, keys, std::nullopt);
+      const std::size_t first = *next_case(started, keys, checks, std::nullopt);
       int sockets[2] = {-1, -1};
       if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sockets) != 0) sockets[0] = sockets[1] = -1;
       std::cout.flush();
