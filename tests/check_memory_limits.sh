@@ -26,19 +26,20 @@ for n, name in ((300, "pairs-beyond-the-cap"), (4, "pairs-within-the-cap")):
             "discretization": {"kind": "midpoint"}, "claims": ["global-order"]}
     json.dump(case, open(f"{work}/{name}.json", "w"))
 EOF
-code=0
-(ulimit -v $cap_kib; exec "$vivv" run "$work/pairs-beyond-the-cap.json" --out "$work/beyond" --quiet) \
-  > "$work/beyond.log" 2>&1 || code=$?
-cat "$work/beyond.log"
+# Runs the case $work/$1.json under the cap into $work/$2: its exit code in $code, its output in
+# $work/$2.log (and shown).
+run_capped() {
+  code=0
+  (ulimit -v $cap_kib; exec "$vivv" run "$work/$1.json" --out "$work/$2" --quiet) > "$work/$2.log" 2>&1 || code=$?
+  cat "$work/$2.log"
+}
+run_capped pairs-beyond-the-cap beyond
 [ "$code" -eq 2 ] || { echo "expected exit 2 for the case beyond the cap, got $code"; exit 1; }
 grep -q "field 'system.lagrangian': reading this system needs more than the [0-9.]* GiB this process may take (what its address-space limit, RLIMIT_AS or ulimit -v, leaves)" "$work/beyond.log" ||
   { echo "the refusal does not name the estimate and the address-space limit"; exit 1; }
 if grep -q "bad_alloc" "$work/beyond.log"; then echo "std::bad_alloc instead of the estimate"; exit 1; fi
 [ ! -e "$work/beyond/report.json" ] || { echo "a report was written for a refused case"; exit 1; }
-code=0
-(ulimit -v $cap_kib; exec "$vivv" run "$work/pairs-within-the-cap.json" --out "$work/within" --quiet) \
-  > "$work/within.log" 2>&1 || code=$?
-cat "$work/within.log"
+run_capped pairs-within-the-cap within
 [ "$code" -eq 0 ] || { echo "expected exit 0 for the case within the cap, got $code"; exit 1; }
 grep -q '"verdict": "pass"' "$work/within/report.json" || { echo "global-order did not pass within the cap"; exit 1; }
 # A case refused for what one claim keeps names the claim and what would fit: symplecticity on a
@@ -55,10 +56,7 @@ case = {"name": "jacobians-beyond-the-cap", "system": {"name": "chain", "lagrang
         "scalar": "float128", "discretization": {"kind": "midpoint"}, "claims": ["global-order", "symplecticity"]}
 json.dump(case, open(f"{work}/jacobians-beyond-the-cap.json", "w"))
 EOF2
-code=0
-(ulimit -v $cap_kib; exec "$vivv" run "$work/jacobians-beyond-the-cap.json" --out "$work/jacobians" --quiet) \
-  > "$work/jacobians.log" 2>&1 || code=$?
-cat "$work/jacobians.log"
+run_capped jacobians-beyond-the-cap jacobians
 [ "$code" -eq 2 ] || { echo "expected exit 2 for the Jacobians beyond the cap, got $code"; exit 1; }
 grep -q "for symplecticity's Jacobians (a dense 2n x 2n matrix for each of the 400000 steps of the longest run)" "$work/jacobians.log" &&
   grep -q "without symplecticity the case needs about [0-9.e-]* [KMG]iB, and with it step counts up to [0-9]* fit" "$work/jacobians.log" ||

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/structure/symplectic_probes.hpp"
@@ -24,8 +25,32 @@
 
 namespace vivv {
 
+// The pairs judge each step (fresh) and the composition (carried). mutate-rules' 2 -> 3 for the fresh
+// pairs survives, as it must: a third pair only lowers the stated miss probability (10^-pairs for a
+// step's defect 10 times its tolerance) and changes no verdict a test can pin.
 inline constexpr int map_probe_fresh_pairs = 2;
 inline constexpr int map_probe_carried_pairs = 2;
+
+// The N-step composition judged by its carried probe pairs (`probe(i)`, i < pairs): each pair's
+// |ξᵀ(JᵀΩJ − Ω)η| / (|ξ||η|) against N·ulps·step_unit·max(1, stretch)² (step_unit the largest step's
+// rounding unit); the (defect, tolerance) of the pair nearest its tolerance. Shared by a DEL map's
+// probes and a one-step map's (symplecticity.hpp).
+template <class T, class Probe>
+std::pair<T, T> composite_probes(int pairs, int steps, int ulps, const T& step_unit, const T& h, Probe&& probe) {
+  T composite_defect = 0, composite_tolerance = 0, composite_ratio = -1;
+  for (int i = 0; i < pairs; ++i) {
+    const ProbeDefect<T> measured = probe(i);
+    const T stretch = nan_max(T(1), measured.stretch);
+    const T defect = measured.defect / measured.norms, tolerance = T(steps) * ulps * step_unit * stretch * stretch;
+    const std::string composite = "at h = " + format_scalar(h, 6) + " the " + std::to_string(steps) +
+                                  "-step composition's ";
+    require_finite(defect, composite + "|ξᵀ(JᵀΩJ − Ω)η| / (|ξ||η|)");
+    require_finite(tolerance, composite + "tolerance");
+    if (defect / tolerance > composite_ratio)
+      composite_ratio = defect / tolerance, composite_defect = defect, composite_tolerance = tolerance;
+  }
+  return {composite_defect, composite_tolerance};
+}
 
 // `Claim` is SymplecticityClaim (its ulps, probe_seed, phase_size and Jacobian check rows).
 template <class Claim, LagrangianSystem System, class T = typename System::Scalar>
@@ -113,18 +138,9 @@ void measure_map_by_probes(const CaseContext<System>& context, const std::vector
         worst_ratio = step.defect / tolerance, worst_defect = step.defect, worst_tolerance = tolerance, worst = k,
         worst_unit = step.unit;
     }
-    T composite_defect = 0, composite_tolerance = 0, composite_ratio = -1;
-    for (int i = 0; i < map_probe_carried_pairs; ++i) {
-      const ProbeDefect<T> probe = probe_defect<T>(start[2 * i], start[2 * i + 1], carried[2 * i], carried[2 * i + 1]);
-      const T stretch = nan_max(T(1), probe.stretch);
-      const T defect = probe.defect / probe.norms, tolerance = T(steps) * Claim::ulps * step_unit * stretch * stretch;
-      const std::string composite = "at h = " + format_scalar(h, 6) + " the " + std::to_string(steps) +
-                                    "-step composition's ";
-      require_finite(defect, composite + "|ξᵀ(JᵀΩJ − Ω)η| / (|ξ||η|)");
-      require_finite(tolerance, composite + "tolerance");
-      if (defect / tolerance > composite_ratio)
-        composite_ratio = defect / tolerance, composite_defect = defect, composite_tolerance = tolerance;
-    }
+    const auto [composite_defect, composite_tolerance] = composite_probes<T>(
+        map_probe_carried_pairs, steps, Claim::ulps, step_unit, h,
+        [&](int i) { return probe_defect<T>(start[2 * i], start[2 * i + 1], carried[2 * i], carried[2 * i + 1]); });
     check.add(h, worst_defect, worst_tolerance,
               {{"N", steps},
                {"largest_step_defect", to_decimal<T>(largest_defect)},

@@ -458,18 +458,9 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
         }
         step_unit = nan_max(step_unit, T(epsilon<T>() * generating.size * stretch * stretch));
       }
-      T composite_defect = 0, composite_tolerance = 0, composite_ratio = -1;
-      for (int i = 0; i < probe_pairs; ++i) {
-        const ProbeDefect<T> probe = probe_defect<T>(start_xi[i], start_eta[i], xi[i], eta[i]);
-        const T stretch = nan_max(T(1), probe.stretch);
-        const T defect = probe.defect / probe.norms, tolerance = T(steps) * ulps * step_unit * stretch * stretch;
-        const std::string composite = "at h = " + format_scalar(h, 6) + " the " + std::to_string(steps) +
-                                      "-step composition's ";
-        require_finite(defect, composite + "|ξᵀ(JᵀΩJ − Ω)η| / (|ξ||η|)");
-        require_finite(tolerance, composite + "tolerance");
-        if (defect / tolerance > composite_ratio)
-          composite_ratio = defect / tolerance, composite_defect = defect, composite_tolerance = tolerance;
-      }
+      const auto [composite_defect, composite_tolerance] =
+          composite_probes<T>(probe_pairs, steps, ulps, step_unit, h,
+                              [&](int i) { return probe_defect<T>(start_xi[i], start_eta[i], xi[i], eta[i]); });
       check.add(h, worst_defect, worst_tolerance,
                 {{"N", steps},
                  {"largest_step_defect", to_decimal<T>(largest_defect)},

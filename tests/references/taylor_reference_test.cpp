@@ -37,6 +37,21 @@ TEST(TaylorReferenceTest, ClaimsItsToleranceAgainstTheClosedForm) {
   EXPECT_GT(reference.report().steps, 0);
 }
 
+// The pendulum's start of the tests below: q = 1, w = 1/2.
+template <class T>
+State<T, 1> pendulum_start() {
+  State<T, 1> start;
+  start.q[0] = T(1);
+  start.w[0] = T(1) / 2;
+  return start;
+}
+
+// 10⁻¹², or the flow's floor where that is higher (double).
+template <class T>
+T tolerance_at_least_the_floor() {
+  return T(1e-12) > TaylorReference<Pendulum<T>>::floor() ? T(1e-12) : TaylorReference<Pendulum<T>>::floor();
+}
+
 // At the floor of a hardware scalar (10⁴ ε) the check's step tolerance cannot go below the flow's
 // (both 10 ε): a check at the same tolerance and order took the same steps and agreed to the bit,
 // so estimate_error was exactly 0 and checked nothing (a Lennard-Jones cluster's float128
@@ -67,12 +82,8 @@ TEST(TaylorReferenceTest, ItsCheckAtTheFloorIsAnotherIntegration) {
 template <class T>
 void expect_the_concurrent_check_to_be_the_inline_one() {
   Pendulum<T> pendulum;
-  State<T, 1> start;
-  start.q[0] = T(1);
-  start.w[0] = T(1) / 2;
-  TaylorReference<Pendulum<T>> inline_check(pendulum, T(1e-12) > TaylorReference<Pendulum<T>>::floor()
-                                                          ? T(1e-12)
-                                                          : TaylorReference<Pendulum<T>>::floor());
+  const State<T, 1> start = pendulum_start<T>();
+  TaylorReference<Pendulum<T>> inline_check(pendulum, tolerance_at_least_the_floor<T>());
   TaylorReference<Pendulum<T>> concurrent(pendulum, inline_check.tolerance());
   concurrent.start_check(start, T(10));
   concurrent.advance(start, T(10));
@@ -101,10 +112,8 @@ TEST(TaylorReferenceTest, ItsConcurrentCheckIsTheInlineOne) {
 template <class T>
 void expect_recalled_answers_to_be_returned() {
   Pendulum<T> pendulum;
-  State<T, 1> start;
-  start.q[0] = T(1);
-  start.w[0] = T(1) / 2;
-  const T tolerance = T(1e-12) > TaylorReference<Pendulum<T>>::floor() ? T(1e-12) : TaylorReference<Pendulum<T>>::floor();
+  const State<T, 1> start = pendulum_start<T>();
+  const T tolerance = tolerance_at_least_the_floor<T>();
   TaylorReference<Pendulum<T>> first(pendulum, tolerance);
   first.keep_answers();
   const std::vector<T> times = {T(1) / 3, T(2), T(-1)};
