@@ -12,26 +12,16 @@
 #include "cases/systems.hpp"
 #include "core/formulas/formula_size.hpp"
 #include "core/formulas/formula_system.hpp"
+#include "core/lagrangian/euler_lagrange_tape.hpp"
 #include "core/platform/memory_limit.hpp"
+#include "cases/memory_estimate.hpp"
 #include "core/structure/dense_limit.hpp"
 
 namespace vivv::case_reading {
 
 namespace {
 
-// The bytes reading a formula system holds per operation of L, beyond the operations' first-order
-// jets: its tape in long double, the edge-pushing record of its sparse second derivatives and the
-// interpreter's values: 1.4 KiB measured on an all-pairs sum of 200 particles (docs/case-files.md),
-// rounded up.
-constexpr double bytes_read_per_operation = 2048;
-
 std::string gib(double bytes) { return three_digits(bytes / (1024.0 * 1024 * 1024)) + " GiB"; }
-// A size in the unit that reads best: KiB, MiB or GiB.
-std::string in_bytes(double bytes) {
-  if (bytes < 1024.0 * 1024) return three_digits(bytes / 1024) + " KiB";
-  if (bytes < 1024.0 * 1024 * 1024) return three_digits(bytes / (1024.0 * 1024)) + " MiB";
-  return gib(bytes);
-}
 
 // L recorded within what reading may spend, before the rest of the system is built from it: the
 // operations its sums expand to as written (core/formulas/formula_size.hpp: its sums' bounds
@@ -51,7 +41,7 @@ std::size_t record_within_limits(const FormulaSystemDefinition& definition, Read
                                     " operations as written (counted from its sums' bounds, before expanding "
                                     "them): vivv reads formulas up to that size");
   }
-  const double per_operation = bytes_read_per_operation + (1 + 2 * static_cast<double>(n)) * sizeof(long double);
+  const double per_operation = recording_bytes_per_operation + (1 + 2 * static_cast<double>(n)) * sizeof(long double);
   const MemoryLimit limit = memory_limit();
   const double ceiling = std::max(64.0, std::floor(limit.bytes / per_operation));
   try {
@@ -307,9 +297,15 @@ void read_formula_system(Reader& system, CaseSpec& spec) {
     switch (n) {
       case 1: definition->operations = make_formula_system<long double, 1>(*definition).program->nodes.size(); break;
       case 2: definition->operations = make_formula_system<long double, 2>(*definition).program->nodes.size(); break;
-      default:
-        definition->operations = make_formula_system<long double, any_size>(*definition).program->nodes.size();
+      default: {
+        const auto made = make_formula_system<long double, any_size>(*definition);
+        definition->operations = made.program->nodes.size();
+        try {  // a singular mass matrix is refused with its reason by check_initial_state
+          definition->acceleration_operations = sparse_euler_lagrange_tape(*made.derivatives).nodes.size();
+        } catch (const SingularLagrangianError&) {
+        }
         break;
+      }
     }
   } catch (const FormulaError& error) {
     system.fail("lagrangian", describe_formula_error(text, error));
@@ -404,81 +400,40 @@ void check_initial_state(const CaseSpec& spec, const std::string& file) {
   visit_system<T>(spec.system, parameters, [&](const auto& system) { check_regular(system, spec, file); });
 }
 
-// The bytes of one number in `scalar` at `digits` (MPFR: the number and its limbs).
-static double bytes_per_number(const std::string& scalar, int digits) {
-  if (scalar == "double") return sizeof(double);
-  if (scalar == "long double") return sizeof(long double);
-  if (scalar == "float128") return sizeof(quad);
-  const double limbs = std::ceil(digits * 3.3219280948873623 / 64) + 1;
-  return static_cast<double>(sizeof(mpfr_real)) + 8 * limbs;
-}
-
-// Whether a discretization still differentiates L in dense jets at run-time sizes: Galerkin's
-// extremal and the TQ formalism (first-order jets of 2n + 1 numbers aside, which every path may
-// use). The other Q × Q rules read L's sparse derivatives (core/qxq/sparse_legendre.hpp), and a
-// map's Legendre transform (p = ∂L/∂v and its inverse) reads L's sparse derivatives too.
-static bool dense_second_derivatives(const DiscretizationSpec& d) {
-  return d.formalism == "tq" || d.kind == "galerkin";
-}
-
 void check_memory(const CaseSpec& spec, const std::string& file, const std::string& scalar, int digits,
                   const std::string& purpose) {
   if (!spec.formula || spec.dimension <= 2) return;
-  const double n = spec.dimension;
-  const double operations =
-      static_cast<double>(spec.formula->operations ? spec.formula->operations
-                                                   : make_formula_system<long double, any_size>(*spec.formula)
-                                                         .program->nodes.size());
-  // A program that computes in double is judged with vivv's side in float128 (run_case.cpp).
-  const double number = bytes_per_number(
-      scalar == "double" && spec.discretization.process_precision == "double" ? "float128" : scalar, digits);
-  // The largest of what the run holds at once: first-order jets through L's tape; with a dense
-  // discretization, second-order jets of 1 + 2n + (2n)² numbers per operation; and for
-  // symplecticity the dense 2n × 2n Jacobian of every step of the longest run.
-  const double first = operations * (1 + 2 * n) * number;
-  double needed = first;
-  std::string what = "for vivv's first derivatives (each operation a jet of 1 + 2n numbers)";
-  // What the case could drop to fit, said with the part that needs the memory.
-  std::string instead = "; a system of fewer coordinates, or an L of fewer operations, is what would fit";
-  const bool dense = dense_second_derivatives(spec.discretization) ||
-                     (spec.past_discretization && dense_second_derivatives(*spec.past_discretization)) ||
-                     (spec.compare_discretization && dense_second_derivatives(*spec.compare_discretization));
-  if (dense && operations * (1 + 2 * n + 4 * n * n) * number > needed) {
-    needed = operations * (1 + 2 * n + 4 * n * n) * number;
-    what = "for vivv's dense second derivatives (each operation a jet of 1 + 2n + (2n)^2 numbers)";
-    instead = "; only the Galerkin and TQ discretizations need them: a Q x Q rule or a map on the same L needs about " +
-              in_bytes(first);
-  }
-  const double without_jacobians = needed;
-  double jacobian_bytes = 0;  // a step's Jacobian, where symplecticity's are what does not fit
-  const bool symplecticity = std::find(spec.claims.begin(), spec.claims.end(), "symplecticity") != spec.claims.end();
-  // A DEL map or a one-step map above symplecticity_dense_limit coordinates is judged by probes and
-  // keeps no Jacobian.
-  const bool dense_symplecticity = (spec.discretization.formalism != "qxq" && spec.discretization.formalism != "map") ||
-                                   spec.dimension <= symplecticity_dense_limit;
-  if (symplecticity && dense_symplecticity && !spec.steps.empty()) {
-    const double jacobians = static_cast<double>(spec.steps.back()) * 4 * n * n * number;
-    if (jacobians > needed) {
-      needed = jacobians;
-      what = "for symplecticity's Jacobians (a dense 2n x 2n matrix for each of the " +
-             std::to_string(spec.steps.back()) + " steps of the longest run)";
-      instead = "; without symplecticity the case needs about " + in_bytes(without_jacobians);
-      jacobian_bytes = 4 * n * n * number;
-    }
-  }
+  const MemoryEstimate estimate = estimate_memory(spec, scalar, digits);
   const MemoryLimit limit = memory_limit();
-  // The step counts up to which symplecticity's Jacobians fit beside the rest (limit.bytes is finite here).
-  const auto fitting_steps = [&]() -> std::string {
-    if (jacobian_bytes <= 0) return "";
-    const double fitting = std::floor((limit.bytes - without_jacobians) / jacobian_bytes);
-    return fitting >= 1 ? ", and with it step counts up to " + std::to_string(static_cast<long>(fitting)) + " fit" : "";
-  };
-  if (needed > limit.bytes)
-    throw CaseError(file, "system.coordinates",
-                    "a system of " + std::to_string(spec.dimension) + " coordinates whose L takes " +
-                        std::to_string(static_cast<long>(operations)) + " operations needs about " + gib(needed) +
-                        " in " + scalar + purpose + " " + what + ", more than the " + gib(limit.bytes) +
-                        " this process may take (" + limit.what + ")" + instead + fitting_steps());
+  const double needed = estimate.total();
+  if (needed <= limit.bytes) return;
+  // The largest part (the process itself comes first and is never the largest here), and what
+  // the case could drop to fit, said with it.
+  const MemoryPart& largest = *std::max_element(estimate.parts.begin(), estimate.parts.end(),
+                                                [](const MemoryPart& a, const MemoryPart& b) { return a.bytes < b.bytes; });
+  const double without = needed - largest.bytes;
+  std::string instead;
+  if (largest.name == "symplecticity's Jacobians") {
+    instead = "; without symplecticity the case needs about " + in_bytes(without);
+    const double per_step = largest.bytes / spec.steps.back();
+    const double fitting = std::floor((limit.bytes - without) / per_step);
+    if (fitting >= 1) instead += ", and with it step counts up to " + std::to_string(static_cast<long>(fitting)) + " fit";
+  } else if (largest.name == "dense second derivatives") {
+    instead = "; only the Galerkin and TQ discretizations need them: a Q x Q rule or a map on the same L needs about " +
+              in_bytes(without);
+  } else if (largest.name == "sweep") {
+    instead = "; fewer or shorter runs in \"steps\" would fit: without the sweep the case needs about " + in_bytes(without);
+  } else {
+    instead = "; a system of fewer coordinates, an L of fewer operations";
+    if (largest.name == "reference flow") instead += " or a scalar of fewer digits";
+    instead += " is what would fit";
+  }
+  throw CaseError(file, "system.coordinates",
+                  "a system of " + std::to_string(spec.dimension) + " coordinates whose L takes " +
+                      std::to_string(spec.formula->operations) + " operations needs about " + in_bytes(needed) +
+                      " in " + scalar + purpose + ", " + in_bytes(largest.bytes) + " of it for " + largest.name +
+                      " (" + largest.what + "), more than the " + in_bytes(limit.bytes) + " this process may take (" +
+                      limit.what + ")" + instead);
 }
 
 }  // namespace vivv::case_reading

@@ -40,6 +40,10 @@ struct FormulaSystemDefinition {
   std::shared_ptr<const PerScalar<SystemRecorder>> recorded;
   // The operations of L's recorded tape, counted when the case was read (0: not yet recorded).
   std::size_t operations = 0;
+  // The nodes of the Euler–Lagrange acceleration's tape (the Taylor reference flow's, from L's
+  // sparse derivatives), counted when the case was read for the memory estimate (0: not counted:
+  // one or two coordinates, or an L whose mass matrix is singular, which the reading refuses).
+  std::size_t acceleration_operations = 0;
 };
 
 // n: the number of coordinates, fixed (1, 2) or any_size (then the definition's, at run time).

@@ -73,6 +73,9 @@ struct RunOptions {
   // --claims a,b: only these of each case's claims run; a case that lists none is skipped and
   // reported as skipped. Empty: every claim of every case.
   std::vector<std::string> claims;
+  // --plan: print what each case will compute and hold (harness/command_line/plan.cpp), compute
+  // nothing, write no report.
+  bool plan = false;
   // --allow-process: cases may start the programs they name (discretization kind "process");
   // --process-timeout: the seconds such a program has for each answer.
   bool allow_process = false;
@@ -116,6 +119,9 @@ void check_output_directory(const std::string& out, const std::string& option = 
 int write_reports(const std::string& out, const nlohmann::json& report, bool verbose);
 
 int command_run(const std::vector<std::string>& args, const std::string& command_line);
+
+// `vivv run --plan`: each case's work and memory estimate, printed to `out`; exit 0.
+int print_plan(std::ostream& out, const std::vector<CaseSpec>& specs, const RunOptions& options);
 int command_report(const std::vector<std::string>& args, const std::string& command_line);
 int command_list();
 

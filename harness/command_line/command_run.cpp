@@ -142,8 +142,10 @@ static nlohmann::json select_claims(std::vector<CaseSpec>& specs, const std::vec
 
 int command_run(const std::vector<std::string>& args, const std::string& command_line) {
   RunOptions options = parse_run_options(args);
-  check_output_directory(options.out);
-  if (options.reference_cache) check_output_directory(*options.reference_cache, "--reference-cache");
+  if (!options.plan) {  // a plan writes nothing
+    check_output_directory(options.out);
+    if (options.reference_cache) check_output_directory(*options.reference_cache, "--reference-cache");
+  }
   std::vector<CaseSpec> specs;
   std::map<std::string, std::string> names;
   for (const auto& file : options.case_files) {
@@ -185,6 +187,7 @@ int command_run(const std::vector<std::string>& args, const std::string& command
     if (in_this_shard(k) && !specs[k].claims.empty()) positions.push_back(k);
   std::vector<CaseSpec> selected;
   for (std::size_t k : positions) selected.push_back(specs[k]);
+  if (options.plan) return print_plan(std::cout, selected, options);
   std::vector<nlohmann::json> results = run_all(selected, options);
   std::vector<nlohmann::json> cases;
   std::vector<std::size_t> case_positions;

@@ -154,6 +154,7 @@ RunOptions parse_run_options(const std::vector<std::string>& args) {
     else if (arg == "--quiet") options.progress = false;
     else if (arg == "--verbose") options.verbose = true;
     else if (arg == "--refine") options.refine = true;
+    else if (arg == "--plan") options.plan = true;
     else if (arg == "--keep-going")
       options.keep_going = true;
     else if (arg == "--baseline")
@@ -206,7 +207,7 @@ int usage(std::ostream& out, int code) {
          "                [--max-seconds S] [--keep-going] [--baseline OLD/report.json "
          "[--baseline-tolerance X]]\n"
          "                [--allow-process [--process-timeout S]] [--reference-cache DIR]\n"
-         "                [--progress|--quiet] [--verbose]\n"
+         "                [--progress|--quiet] [--verbose] [--plan]\n"
          "       vivv report REPORT.json [MORE.json ...] --out DIR [--verbose]\n"
          "       vivv list\n"
          "       vivv bench reference|del|process|size\n"
@@ -282,6 +283,9 @@ int run_help(std::ostream& out) {
          "  --quiet            no progress lines\n"
          "  --verbose          list every claim and each pass's detection limit (by default the\n"
          "                     console lists the claims that did not pass, why, and the summary)\n"
+         "  --plan             read and check every case, then print what each will compute (the reference\n"
+         "                     flow's orders, the sweep, each claim's work) and its memory estimate part by\n"
+         "                     part; nothing is computed and no report written\n"
          "  --help, -h         this text\n";
   return exit_pass;
 }
