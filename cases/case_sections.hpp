@@ -30,13 +30,9 @@ const RegisteredSystem* registered_system(Reader& system);
 // regular there, checked in long double before any work.
 void check_initial_state(const CaseSpec& spec, const std::string& file);
 
-// A formula system whose run would not fit in this machine's memory, in `scalar` at `digits`: bad
-// input naming the estimate and what needs it (field system.coordinates). The estimate is the
-// largest of: the tape's operations times a first-order jet of L's 2n variables (1 + 2n numbers);
-// with a discretization still differentiated in dense jets (Galerkin, TQ, maps), times a
-// second-order one (1 + 2n + (2n)² numbers); with symplecticity, a dense 2n × 2n Jacobian per step
-// of the longest run. The other Q × Q rules read L's sparse derivatives.
-void check_memory(const CaseSpec& spec, const std::string& file, const std::string& scalar, int digits,
-                  const std::string& purpose = "");
+// A formula system whose run would not fit in the memory this process may take, in `scalar` at
+// `digits`: bad input naming the estimate (cases/memory_estimate.hpp, part by part), the part that
+// needs the most and what the case could drop (field system.coordinates).
+void check_memory(const CaseSpec& spec, const std::string& file, const std::string& scalar, int digits);
 
 }  // namespace vivv::case_reading

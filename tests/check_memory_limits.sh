@@ -9,13 +9,15 @@ set -euo pipefail
 vivv=$1 python=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
 cap_kib=1500000  # about 1.4 GiB of address space
-# All pairs of N particles in space, a Lennard-Jones sum: N = 300 is 44,850 pairs, several
-# hundred thousand operations of 1 + 2·900 long doubles each: some 10 GiB, far past the cap; N = 4
-# reads and runs in a few MiB.
+# All pairs of N particles in space, a Lennard-Jones sum. N = 400 is 79,800 pairs, more than a
+# million operations, whose recording (about 2 KiB an operation) passes the cap: refused while it is
+# read. N = 300 (44,850 pairs) is read within the cap, and the run's estimate refuses it: the
+# reference flow's Taylor coefficients in MPFR at 30 digits, some 5 GiB. N = 4 reads and runs in a
+# few MiB.
 "$python" - "$work" <<'EOF'
 import json, sys
 work = sys.argv[1]
-for n, name in ((300, "pairs-beyond-the-cap"), (4, "pairs-within-the-cap")):
+for n, name in ((400, "pairs-beyond-the-cap"), (300, "reference-beyond-the-cap"), (4, "pairs-within-the-cap")):
     r2 = "(x[i,1]-x[j,1])^2 + (x[i,2]-x[j,2])^2 + (x[i,3]-x[j,3])^2"
     L = (f"sum(i = 1..{n}, sum(k = 1..3, v[i,k]^2))/2 - "
          f"sum(i = 1..{n}, sum(j = i+1..{n}, 1/({r2})^6 - 1/({r2})^3))")
@@ -39,6 +41,13 @@ grep -q "field 'system.lagrangian': reading this system needs more than the [0-9
   { echo "the refusal does not name the estimate and the address-space limit"; exit 1; }
 if grep -q "bad_alloc" "$work/beyond.log"; then echo "std::bad_alloc instead of the estimate"; exit 1; fi
 [ ! -e "$work/beyond/report.json" ] || { echo "a report was written for a refused case"; exit 1; }
+run_capped reference-beyond-the-cap reference
+[ "$code" -eq 2 ] || { echo "expected exit 2 for the reference beyond the cap, got $code"; exit 1; }
+grep -q "field 'system.coordinates': a system of 900 coordinates whose L takes [0-9]* operations needs about [0-9.]* GiB in mpfr, [0-9.]* GiB of it for reference flow (3 arrays x [0-9]* acceleration nodes x" "$work/reference.log" &&
+  grep -q "or a scalar of fewer digits is what would fit" "$work/reference.log" ||
+  { echo "the refusal does not name the reference flow's part and what would fit"; exit 1; }
+if grep -q "bad_alloc" "$work/reference.log"; then echo "std::bad_alloc instead of the estimate"; exit 1; fi
+[ ! -e "$work/reference/report.json" ] || { echo "a report was written for a refused case"; exit 1; }
 run_capped pairs-within-the-cap within
 [ "$code" -eq 0 ] || { echo "expected exit 0 for the case within the cap, got $code"; exit 1; }
 grep -q '"verdict": "pass"' "$work/within/report.json" || { echo "global-order did not pass within the cap"; exit 1; }
@@ -62,4 +71,4 @@ grep -q "for symplecticity's Jacobians (a dense 2n x 2n matrix for each of the 4
   grep -q "without symplecticity the case needs about [0-9.e-]* [KMG]iB, and with it step counts up to [0-9]* fit" "$work/jacobians.log" ||
   { echo "the refusal does not name the claim and what would fit"; exit 1; }
 [ ! -e "$work/jacobians/report.json" ] || { echo "a report was written for a refused case"; exit 1; }
-echo "refused beyond the cap with its estimate, completed within it; symplecticity's Jacobians named with what fits"
+echo "refused beyond the cap with its estimate (while read, and for the reference flow), completed within it; symplecticity's Jacobians named with what fits"
