@@ -39,8 +39,12 @@ std::string claim_work(const CaseSpec& spec, const std::string& id, double sweep
       return sweep + ": a dense 2n x 2n Jacobian of every step (" + std::to_string(4 * spec.dimension * spec.dimension) +
              " numbers each, all kept) and J^T Omega J";
     if (is_program(spec))
-      return sweep + ": 2 fresh and 2 carried probe pairs a step, 8 products by differences (about 32 program "
-             "requests a step) or the program's own Jacobian";
+      return sweep + ": 2 fresh and 2 carried probe pairs a step, 8 products J v" +
+             (spec.discretization.process_precision == "double"
+                  ? " by extrapolated central differences (32 program requests a step)"
+                  : " by central differences of a second instance at 2D + 10 digits (16 requests a step, more at "
+                    "every eighth)") +
+             ", or from the program's own Jacobian where it sends one";
     return sweep + ": the generating form over the blocks' nonzeros and 4 probe pairs a step (about one DEL step a step)";
   }
   if (id == "energy-behaviour") return sweep + ": the energy at every state";
