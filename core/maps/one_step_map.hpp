@@ -72,6 +72,14 @@ struct OneStepMap {
   virtual std::optional<State<T, n>> steps(const State<T, n>& /*x*/, const T& /*h*/, long /*count*/) const {
     return std::nullopt;
   }
+  // x_1 … x_count, every state of `count` steps from x, at once where the map can (a program that
+  // took up the protocol's "steps" and "trajectory" extensions: the states cross its pipe a batch at
+  // a time, not a request a step); nullopt as for steps(), and the caller then takes the steps one
+  // at a time.
+  virtual std::optional<std::vector<State<T, n>>> trajectory(const State<T, n>& /*x*/, const T& /*h*/,
+                                                             long /*count*/) const {
+    return std::nullopt;
+  }
   // The relative rounding of jacobian()'s entries: ε of T for a Jacobian computed exactly (jets,
   // the implicit function theorem, a program's own), larger for one by differences at a width
   // the map's precision allows (a double program: about ε^(2/3)). symplecticity's tolerance is

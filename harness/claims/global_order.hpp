@@ -26,6 +26,12 @@ std::vector<State<typename System::Scalar, System::dimension>> map_trajectory(co
   using T = typename System::Scalar;
   using std::isfinite;
   std::vector<State<T, System::dimension>> x{context.initial};
+  // Every state at once where the map can (a program that took up "trajectory": a batch a
+  // request); a run it cannot finish so is taken a step at a time below, which says where it left.
+  if (auto states = context.map->trajectory(context.initial, h, N)) {
+    x.insert(x.end(), states->begin(), states->end());
+    return x;
+  }
   for (int k = 0; k < N; ++k) {
     x.push_back(context.map->step(x.back(), h));
     for (int i = 0; i < static_cast<int>(x.back().q.size()); ++i)

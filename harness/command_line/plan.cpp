@@ -88,7 +88,9 @@ int print_plan(std::ostream& out, const std::vector<CaseSpec>& specs, const RunO
     std::string counts;
     for (int N : spec.steps) sweep_steps += N, counts += (counts.empty() ? "" : ", ") + std::to_string(N);
     out << "  sweep: N = " << counts << " over T (" << static_cast<long>(sweep_steps) << " steps"
-        << (is_program(spec) ? ", each a step of the program (one request a run where it takes \"steps\")" : "")
+        << (is_program(spec) ? ", each a step of the program: a batch a request where it takes \"steps\" (and "
+                               "\"trajectory\", where a claim reads every state), else a request a step"
+                             : "")
         << ")\n";
     for (const auto& id : spec.claims) out << "  " << id << ": " << claim_work(spec, id, sweep_steps) << "\n";
     const MemoryEstimate estimate = estimate_memory(spec, spec.scalar, spec.digits);

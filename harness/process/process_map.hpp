@@ -161,20 +161,27 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   // the step.
   std::optional<State<T, N>> steps(const State<T, N>& x, const T& h, long count) const override {
     if (!process_->uses_extension(steps_extension) || count < 2) return std::nullopt;
-    State<T, N> state = x;
-    for (long left = count; left > 0;) {
-      const long asked = std::min(left, batch_);
-      const auto started = std::chrono::steady_clock::now();
-      const std::optional<State<T, N>> next = batched_request(state, h, asked);
-      if (!next) return std::nullopt;
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-      const double pace = std::min(1.0, options_.timeout_seconds / 10);
-      const double paced = seconds > 0 ? asked * pace / seconds : 16.0 * asked;
-      batch_ = std::max(1L, static_cast<long>(std::min(16.0 * asked, paced)));
-      state = *next;
-      left -= asked;
-    }
-    return state;
+    return paced_batches(x, count, [&](const State<T, N>& from, long asked) { return batched_request(from, h, asked); });
+  }
+
+  // x_1 … x_count in few requests {"h", "q", "p", "steps": k, "trajectory": true}, for a program
+  // that took up "steps" and "trajectory": each answer carries, beside the last state, every state
+  // its k steps reached ("trajectory": k arrays of 2n decimal strings, q then p), paced as steps();
+  // nullopt where steps() would give none, and the run is then taken one request a step.
+  std::optional<std::vector<State<T, N>>> trajectory(const State<T, N>& x, const T& h, long count) const override {
+    if (!process_->uses_extension(steps_extension) || !process_->uses_extension(trajectory_extension) || count < 2)
+      return std::nullopt;
+    std::vector<State<T, N>> states;
+    states.reserve(static_cast<std::size_t>(count));
+    // At most the states whose answer fits in the longest line vivv reads (program.cpp: 2n + (2n)²
+    // numbers of D + 16 characters, twice for spaces): about 2n states a request, more below 1 MiB.
+    const double per_state = 2.0 * (2 * n) * (digits_ + 16);
+    const long fitting = std::max(1L, static_cast<long>((process_->longest_line() - 4096) / per_state) - 1);
+    const auto end = paced_batches(x, count, [&](const State<T, N>& from, long asked) {
+      return batched_states(from, h, asked, states);
+    }, fitting);
+    if (!end) return std::nullopt;
+    return states;
   }
 
   std::optional<long> reported_evaluations() const override {
@@ -295,6 +302,9 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   // The extension a program takes up to take several steps in one request ("steps": k), answering
   // only the last state.
   static constexpr const char* steps_extension = "steps";
+  // The extension a program that took up "steps" takes up to answer, beside the last state, every
+  // state of the k steps ("trajectory": true in the request), for the claims that read them all.
+  static constexpr const char* trajectory_extension = "trajectory";
 
  private:
   using R = mpfr_real;
@@ -317,16 +327,103 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
                                    "the count of evaluations this step made (a whole number, 0 to 10^12)");
   }
 
-  // One request for `count` steps from x (extension "steps"): the end state, or nullopt (above).
-  std::optional<State<T, N>> batched_request(const State<T, N>& x, const T& h, long count) const {
+  // `count` steps from x in requests of batch_ steps (and at most `at_most`), each next batch as
+  // many as take about a second at the last one's pace (at most 16 times as many, a tenth of
+  // --process-timeout at most): `request(from, asked)` takes `asked` steps from `from` and gives
+  // their end state, or nullopt, which ends the run with nullopt.
+  template <class Request>
+  std::optional<State<T, N>> paced_batches(const State<T, N>& x, long count, const Request& request,
+                                           long at_most = std::numeric_limits<long>::max()) const {
+    State<T, N> state = x;
+    for (long left = count; left > 0;) {
+      const long asked = std::min({left, batch_, at_most});
+      const auto started = std::chrono::steady_clock::now();
+      const std::optional<State<T, N>> next = request(state, asked);
+      if (!next) return std::nullopt;
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      const double pace = std::min(1.0, options_.timeout_seconds / 10);
+      const double paced = seconds > 0 ? asked * pace / seconds : 16.0 * asked;
+      batch_ = std::max(1L, static_cast<long>(std::min(16.0 * asked, paced)));
+      state = *next;
+      left -= asked;
+    }
+    return state;
+  }
+
+  // One request for `count` steps from x with every state answered (extensions "steps" and
+  // "trajectory"), appended to `states`: the end state, or nullopt as batched_request. The
+  // answer's "trajectory" must hold the `count` states, each 2n decimal strings at the greeting's
+  // digits, the last of them the answer's "q" and "p"; anything else is a malformed answer.
+  std::optional<State<T, N>> batched_states(const State<T, N>& x, const T& h, long count,
+                                            std::vector<State<T, N>>& states) const {
+    const std::optional<nlohmann::json> answered = batch_answer(x, h, count, true);
+    if (!answered) return std::nullopt;
+    const nlohmann::json& answer = *answered;
+    const long taken = count;
+    const auto found = answer.find(trajectory_extension);
+    const std::string expected = "an array of the " + std::to_string(taken) +
+                                 " states its steps reached, each an array of 2n = " + std::to_string(2 * n) +
+                                 " decimal strings (q, then p)";
+    if (found == answer.end() || !found->is_array() || found->size() != static_cast<std::size_t>(taken))
+      process_->fail_answer("it took up the extension \"trajectory\" and its answer's \"trajectory\" is " +
+                            (found == answer.end() ? std::string("missing") : quoted_text(found->dump(), 200)) +
+                            ", not " + expected);
+    using std::abs;
+    const T bound = from_decimal<T>(bound_);
+    Vector<T, N> p_end(n);
+    State<T, N> previous = x;
+    for (long k = 0; k < taken; ++k) {
+      const nlohmann::json& row = (*found)[static_cast<std::size_t>(k)];
+      const std::string where = "trajectory[" + std::to_string(k) + "]";
+      if (!row.is_array() || row.size() != static_cast<std::size_t>(2 * n))
+        process_->fail_answer("its answer's \"" + where + "\" is " + quoted_text(row.dump(), 200) + ", not " +
+                              std::to_string(2 * n) + " decimal strings (q, then p)");
+      State<T, N> next{Vector<T, N>(n), Vector<T, N>(n)};
+      for (int i = 0; i < n; ++i) {
+        next.q[i] = answer_decimal<T>(*process_, row[static_cast<std::size_t>(i)], where + "[" + std::to_string(i) + "]",
+                                      digits_);
+        p_end[i] = answer_decimal<T>(*process_, row[static_cast<std::size_t>(n + i)],
+                                     where + "[" + std::to_string(n + i) + "]", digits_);
+        if (!(abs(next.q[i]) <= bound && abs(p_end[i]) <= bound)) return std::nullopt;
+      }
+      if (k + 1 == taken)
+        for (int i = 0; i < n; ++i)
+          if (answer_number<T>(*process_, answer, "q", i, n, digits_) != next.q[i] ||
+              answer_number<T>(*process_, answer, "p", i, n, digits_) != p_end[i])
+            process_->fail_answer("its answer's last state in \"trajectory\" is not its \"q\" and \"p\" (entry " +
+                                  std::to_string(i) + " differs)");
+      try {  // from the state before's w, a step away
+        next.w = velocity_for_momentum(system_, next.q, p_end, previous.w);
+      } catch (const SolverError&) {
+        return std::nullopt;
+      }
+      states.push_back(next);
+      previous = next;
+    }
+    last_ = {previous, p_end};
+    return previous;
+  }
+
+  // The answer to one request for `count` steps from x (extension "steps"; with `every`, each
+  // state too: "trajectory"), its evaluations counted; nullopt where it took fewer steps.
+  std::optional<nlohmann::json> batch_answer(const State<T, N>& x, const T& h, long count, bool every) const {
     nlohmann::json request = state_request(x, h);
     request[steps_extension] = count;
-    const nlohmann::json answer = process_->request(request);
+    if (every) request[trajectory_extension] = true;
+    nlohmann::json answer = process_->request(request);
     const long taken = answer_count(*process_, answer, steps_extension, count,
                                     "the count of steps it took (a whole number, 0 to the " + std::to_string(count) +
                                         " asked for)");
     count_evaluations(answer);
     if (taken < count) return std::nullopt;
+    return answer;
+  }
+
+  // One request for `count` steps from x (extension "steps"): the end state, or nullopt (above).
+  std::optional<State<T, N>> batched_request(const State<T, N>& x, const T& h, long count) const {
+    const std::optional<nlohmann::json> answered = batch_answer(x, h, count, false);
+    if (!answered) return std::nullopt;
+    const nlohmann::json& answer = *answered;
     State<T, N> end{Vector<T, N>(n), Vector<T, N>(n)};
     Vector<T, N> p_end(n);
     using std::abs;
@@ -520,7 +617,8 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
                                      {"digits", digits},
                                      {"dimension", n},
                                      {"system", system_json_},
-                                     {"extensions", nlohmann::json::array({jacobian_extension, evaluations_extension, steps_extension})}};
+                                     {"extensions", nlohmann::json::array(
+                                          {jacobian_extension, evaluations_extension, steps_extension, trajectory_extension})}};
     return std::make_unique<MapProcess>(options_, greeting);
   }
 

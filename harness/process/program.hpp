@@ -58,6 +58,8 @@ class MapProcess {
   std::string name() const;
   // Requests answered so far (the greeting not counted).
   long requests() const { return requests_; }
+  // The longest answer line read, in characters (from the greeting's n and D, at least 1 MiB).
+  std::size_t longest_line() const { return longest_line_; }
   // Whether the program took up `extension` (offered in the greeting's "extensions", named in
   // its answer's): "jacobian", its own Jacobian in each answer.
   bool uses_extension(const std::string& extension) const {

@@ -269,3 +269,33 @@ def test_numpy_arrays_are_read_whole_and_still_checked_by_their_dtype():
     wrong_shape = talk(euler, [greeting(17, ["jacobian"]), request], arithmetic="numpy",
                        jacobian=lambda h, q, p: numpy.eye(3))[1]
     assert "3 rows" in wrong_shape.get("error", ""), wrong_shape
+
+
+@pytest.mark.parametrize("arithmetic, digits", [("mpmath", 40), ("float", 17), ("numpy", 17)])
+def test_trajectory_answers_every_state_of_the_steps(arithmetic, digits):
+    pytest.importorskip(arithmetic if arithmetic != "float" else "json")
+    start = {"h": "0.125", "q": ["1"], "p": ["0.5"]}
+    answers = talk(euler, [greeting(digits, ["steps", "trajectory"]), {**start, "steps": 4, "trajectory": True},
+                           {**start, "steps": 4}], arithmetic=arithmetic)
+    assert answers[0] == {"protocol": PROTOCOL, "extensions": ["steps", "trajectory"]}
+    states, state = answers[1]["trajectory"], start
+    assert len(states) == 4 and answers[1]["steps"] == 4
+    for row in states:  # each the single step from the one before, as text
+        single = talk(euler, [greeting(digits), state], arithmetic=arithmetic)[1]
+        assert row == single["q"] + single["p"]
+        state = {"h": "0.125", "q": single["q"], "p": single["p"]}
+    assert states[-1] == answers[1]["q"] + answers[1]["p"]
+    assert "trajectory" not in answers[2]  # only where the request asks for it
+
+
+def test_trajectory_is_taken_up_only_with_steps_and_ends_where_the_steps_end():
+    request = {"h": "0.5", "q": ["1"], "p": ["2"], "steps": 4, "trajectory": True}
+    assert talk(euler, [greeting(17, ["trajectory"]), request], arithmetic="float")[0] == {"protocol": PROTOCOL}
+    assert talk(euler, [greeting(17, ["steps", "trajectory"]), request], arithmetic="float",
+                batch=False)[0] == {"protocol": PROTOCOL}
+
+    def explode(h, q, p):  # finite twice, then infinite
+        return [q[0] * 1e200], [p[0]]
+    answers = talk(explode, [greeting(17, ["steps", "trajectory"]), request], arithmetic="float")
+    assert answers[1]["steps"] == 1 and len(answers[1]["trajectory"]) == 1
+    assert answers[1]["trajectory"][0] == answers[1]["q"] + answers[1]["p"]

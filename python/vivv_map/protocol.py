@@ -1,16 +1,20 @@
 """The loop of protocol vivv-map/1 (docs/process-protocol.md in vivv's source tree).
 
     vivv:    {"protocol": "vivv-map/1", "digits": D, "dimension": n, "system": {...},
-              "extensions": ["jacobian", "evaluations", "steps"]}
+              "extensions": ["jacobian", "evaluations", "steps", "trajectory"]}
     program: {"protocol": "vivv-map/1"}   or, sending its own Jacobian or its count of evaluations,
-             or taking several steps a request,
-             {"protocol": "vivv-map/1", "extensions": ["jacobian", "evaluations", "steps"]}   (or {"error": "why not"})
+             or taking several steps a request (and answering every state of them),
+             {"protocol": "vivv-map/1", "extensions": ["jacobian", "evaluations", "steps", "trajectory"]}
+             (or {"error": "why not"})
     vivv:    {"h": "...", "q": ["...", ...], "p": ["...", ...]}   (+ "jacobian": true where it reads one,
-                                                                   + "steps": k for k steps, when agreed)
+                                                                   + "steps": k for k steps, when agreed,
+                                                                   + "trajectory": true for every state)
     program: {"q": [...], "p": [...]}   (+ "jacobian": [[...], ...] when agreed and asked for,
                                           + "evaluations": k, the step's count, when agreed,
                                           + "steps": m, the steps taken, m < k only where a state
-                                            left the finite numbers: the state before it)
+                                            left the finite numbers: the state before it,
+                                          + "trajectory": [[q..., p...], ...], the m states reached,
+                                            when agreed and asked for)
 
 until vivv closes the program's input. Numbers are decimal strings with at least D significant
 digits.
@@ -30,6 +34,7 @@ PROTOCOL = "vivv-map/1"
 JACOBIAN = "jacobian"
 EVALUATIONS = "evaluations"
 STEPS = "steps"
+TRAJECTORY = "trajectory"
 
 
 class Decline(Exception):
@@ -57,14 +62,14 @@ def _reply_answer(output, answer):
         if key in (EVALUATIONS, STEPS):
             parts.append(json.dumps(key) + ": " + json.dumps(value))
             continue
-        rows = value if key == JACOBIAN else [value]
+        rows = value if key in (JACOBIAN, TRAJECTORY) else [value]
         joined = ['["' + '", "'.join(row) + '"]' if row else "[]" for row in rows]
         text = ", ".join(joined)
         if not text.isascii() or "\\" in text or text.count('"') != 2 * sum(len(row) for row in rows) or \
                 not text.isprintable():
             _reply(output, answer)
             return
-        parts.append(json.dumps(key) + ": " + ("[" + text + "]" if key == JACOBIAN else text))
+        parts.append(json.dumps(key) + ": " + ("[" + text + "]" if key in (JACOBIAN, TRAJECTORY) else text))
     output.write("{" + ", ".join(parts) + "}\n")
     output.flush()
 
@@ -207,7 +212,9 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, evaluations=N
     batch (default True) takes up the extension "steps": vivv may then ask for k steps in one request
     (a run whose states in between no claim reads), and step() is called k times here, only the
     last state crossing the pipe; a state that leaves the finite numbers ends the k early (vivv then
-    steps that run one request a step). batch=False declines it: every step crosses.
+    steps that run one request a step). With it the extension "trajectory" is taken up too: a request
+    that asks for it is answered with every state of its k steps (the claims that read them all:
+    energy-behaviour, discrete-noether, symplecticity). batch=False declines both: every step crosses.
     """
     input = sys.stdin if input is None else input
     output = _protocol_channel() if output is None else output
@@ -231,8 +238,9 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, evaluations=N
     send_jacobian = jacobian is not None and JACOBIAN in offered
     send_evaluations = evaluations is not None and EVALUATIONS in offered
     take_steps = batch and STEPS in offered
+    take_trajectory = take_steps and TRAJECTORY in offered
     taken = [name for name, taken in ((JACOBIAN, send_jacobian), (EVALUATIONS, send_evaluations),
-                                      (STEPS, take_steps)) if taken]
+                                      (STEPS, take_steps), (TRAJECTORY, take_trajectory)) if taken]
     _reply(output, {"protocol": PROTOCOL, **({"extensions": taken} if taken else {})})
     for line in input:
         request = json.loads(line)
@@ -243,9 +251,10 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, evaluations=N
         if isinstance(count, bool) or not isinstance(count, int) or count < 1:
             _reply(output, {"error": f"a request's \"steps\" is {count!r}: expected a whole number, 1 or more"})
             return 1
+        every = take_trajectory and request.get(TRAJECTORY) is True  # answer every state of the count
         try:
             before = _count(evaluations) if send_evaluations else 0
-            x, taken_steps = (q, p), 0
+            x, taken_steps, states = (q, p), 0, []
             while True:  # count steps from (q, p); the states between them stay here
                 result = step(h, *x)
                 q_next, p_next = _state(result, dimension, step)
@@ -253,12 +262,16 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, evaluations=N
                     q_next, p_next, result = list(x[0]), list(x[1]), x  # the state before it; vivv steps one by one
                     break
                 taken_steps += 1
+                if every:
+                    states.append(_written(q_next, numbers, step, result) + _written(p_next, numbers, step, result))
                 if taken_steps == count:
                     break
                 x = (numbers.vector(q_next), numbers.vector(p_next))
             answer = {"q": _written(q_next, numbers, step, result), "p": _written(p_next, numbers, step, result)}
             if STEPS in request and take_steps:
                 answer[STEPS] = taken_steps
+            if every:
+                answer[TRAJECTORY] = states
             if send_evaluations:
                 made = _count(evaluations) - before
                 if made < 0:

@@ -15,7 +15,11 @@ extension, in one run each:
     way does) is stepped one request a step instead, with the same errors;
   - the negative controls: an answer's "steps" written as a string, negative, a fraction, a boolean,
     null or above the count asked for is a malformed answer (the case could not run, exit 4, naming
-    "steps").
+    "steps");
+  - with the extension "trajectory" taken up too, global-order beside energy-behaviour (which reads
+    every state) asks for several steps a request, and both claims' measurements and verdicts are
+    those of one request a step; a "trajectory" missing, a state short, a state of q alone or a last
+    state that is not the answer's q and p is a malformed answer (exit 4, naming "trajectory").
 """
 import json
 import pathlib
@@ -100,11 +104,41 @@ def main(argv):
         said = done.stdout + done.stderr
         if done.returncode != 4 or '"steps"' not in said or "not the count of steps it took" not in said:
             problems.append(f"an answer's steps {bad}: exit {done.returncode} (expected 4, naming \"steps\"): {said[-400:]}")
+    walkers = ["global-order", "energy-behaviour"]
+    walked = {}
+    for name, options in [("trajectory", ["--trajectory"]), ("one-a-step", ["--no-steps"])]:
+        log = work / f"{name}.log"
+        log.unlink(missing_ok=True)
+        done = run(vivv, work, name, case(work, f"steps-{name}", walkers, *options, "--log", str(log)))
+        if done.returncode not in (0, 1):
+            problems.append(f"{name}: the run ended {done.returncode}: {done.stdout[-600:]}{done.stderr[-600:]}")
+            continue
+        # The claims as the report gives them, the program's command line (which names its options)
+        # written as PROGRAM: every number, verdict and explanation compared.
+        text = (work / name / "report.json").read_text()
+        command = " ".join([sys.executable, str(HERE / "steps_verlet.py"), *options, "--log", str(log)])
+        claims = json.loads(text.replace(command, "PROGRAM"))["cases"][0]["claims"]
+        walked[name] = {c["id"]: c for c in claims}, logged(log)
+    if len(walked) == 2:
+        (with_states, states_log), (one_a_step, _) = walked["trajectory"], walked["one-a-step"]
+        if sum(k for k in states_log if k > 1) != sum(STEPS):
+            problems.append(f"with \"trajectory\" the runs were asked in requests of {[k for k in states_log if k > 1]} "
+                            f"steps, expected all {sum(STEPS)} steps of the sweep in batches")
+        for claim in walkers:
+            if with_states.get(claim) != one_a_step.get(claim):
+                problems.append(f"{claim} with \"trajectory\" differs from one request a step")
+    for fault in ["missing", "short", "row", "last"]:
+        done = run(vivv, work, "bad", case(work, "trajectory-bad-answer", walkers, "--trajectory", "--trajectory-fault", fault))
+        said = done.stdout + done.stderr
+        if done.returncode != 4 or "trajectory" not in said:
+            problems.append(f"a trajectory answer {fault}: exit {done.returncode} (expected 4, naming \"trajectory\"): "
+                            f"{said[-400:]}")
     for problem in problems:
         print(problem)
     print("extension steps:", "problems above" if problems else
           "one or two requests a run, the same errors as one a step; kept whole beside energy-behaviour; "
-          "a short answer stepped one by one; 6 malformed counts refused")
+          "a short answer stepped one by one; 6 malformed counts refused; with \"trajectory\" the walking claims "
+          "batched and unchanged, 4 malformed trajectories refused")
     return 1 if problems else 0
 
 
