@@ -174,9 +174,12 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     std::vector<State<T, N>> states;
     states.reserve(static_cast<std::size_t>(count));
     // At most the states whose answer fits in the longest line vivv reads (program.cpp: 2n + (2n)²
-    // numbers of D + 16 characters, twice for spaces): about 2n states a request, more below 1 MiB.
-    const double per_state = 2.0 * (2 * n) * (digits_ + 16);
-    const long fitting = std::max(1L, static_cast<long>((process_->longest_line() - 4096) / per_state) - 1);
+    // numbers of D + 16 characters, twice for spaces), and in 8 MiB of text, so that an answer and
+    // its parsed JSON stay small beside the case (at 114 coordinates and D = 17 about 1 100 states
+    // a request; at 1000 coordinates about 130, still one round trip for many steps).
+    const double per_state = (2 * n) * (digits_ + 16.0);
+    const double line_states = (process_->longest_line() - 4096) / (2 * per_state) - 1;
+    const long fitting = std::max(1L, static_cast<long>(std::min(line_states, 8.0 * 1024 * 1024 / per_state)));
     const auto end = paced_batches(x, count, [&](const State<T, N>& from, long asked) {
       return batched_states(from, h, asked, states);
     }, fitting);
