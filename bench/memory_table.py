@@ -64,49 +64,40 @@ def small_velocities(count):
     return [repr(math.cos(1.7 * i) / 20) for i in range(count)]
 
 
-def gravity_case(n):
-    bodies = n // 3
+def bodies_case(kind, bodies, params, lagrangian, spacing, discretization):
+    """All pairs of `bodies` in space on a cubic lattice of `spacing`, global-order over T = 1/4."""
     return {
-        "name": f"memory-gravity-{bodies}",
-        "system": {
-            "name": f"gravity-{bodies}",
-            "coordinates": [{"x": [bodies, 3]}],
-            "velocities": [{"v": [bodies, 3]}],
-            "params": {"m": [f"1/{i}" for i in range(1, bodies + 1)]},
-            "lagrangian": f"sum(i = 1..{bodies}, m[i]*sum(k = 1..3, v[i,k]^2))/2 + sum(i = 1..{bodies - 1}, "
-                          f"sum(j = i+1..{bodies}, m[i]*m[j]/sqrt(sum(k = 1..3, (x[i,k] - x[j,k])^2))))",
-        },
-        "initial": {"q": lattice(bodies, 1.0), "w": small_velocities(3 * bodies)},
+        "name": f"memory-{kind}-{bodies}",
+        "system": {"name": f"{kind}-{bodies}", "coordinates": [{"x": [bodies, 3]}],
+                   "velocities": [{"v": [bodies, 3]}], "params": params, "lagrangian": lagrangian},
+        "initial": {"q": lattice(bodies, spacing), "w": small_velocities(3 * bodies)},
         "T": "1/4",
         "steps": [8, 16, 32, 64],
         "scalar": "double",
-        "discretization": {"kind": "midpoint"},
+        "discretization": discretization,
         "claims": ["global-order"],
     }
+
+
+def gravity_case(n):
+    bodies = n // 3
+    return bodies_case(
+        "gravity", bodies, {"m": [f"1/{i}" for i in range(1, bodies + 1)]},
+        f"sum(i = 1..{bodies}, m[i]*sum(k = 1..3, v[i,k]^2))/2 + sum(i = 1..{bodies - 1}, "
+        f"sum(j = i+1..{bodies}, m[i]*m[j]/sqrt(sum(k = 1..3, (x[i,k] - x[j,k])^2))))",
+        1.0, {"kind": "midpoint"})
 
 
 def lj_case(n):
     atoms = n // 3
-    return {
-        "name": f"memory-lj-{atoms}",
-        "system": {
-            "name": f"lennard-jones-{atoms}",
-            "coordinates": [{"x": [atoms, 3]}],
-            "velocities": [{"v": [atoms, 3]}],
-            "params": {"eps": "1", "sigma": "1"},
-            "lagrangian": f"sum(i = 1..{atoms}, sum(k = 1..3, v[i,k]^2))/2 - 4*eps*sum(i = 1..{atoms - 1}, "
-                          f"sum(j = i+1..{atoms}, (sigma^2/sum(k = 1..3, (x[i,k] - x[j,k])^2))^6 - "
-                          f"(sigma^2/sum(k = 1..3, (x[i,k] - x[j,k])^2))^3))",
-        },
-        "initial": {"q": lattice(atoms, 1.12), "w": small_velocities(3 * atoms)},
-        "T": "1/4",
-        "steps": [8, 16, 32, 64],
-        "scalar": "double",
-        "discretization": {"kind": "process", "precision": "double", "order": 2,
-                           "command": ["/usr/bin/python3",
-                                       os.path.join(ROOT, "examples", "python-integrator", "lj_cluster_verlet.py")]},
-        "claims": ["global-order"],
-    }
+    return bodies_case(
+        "lj", atoms, {"eps": "1", "sigma": "1"},
+        f"sum(i = 1..{atoms}, sum(k = 1..3, v[i,k]^2))/2 - 4*eps*sum(i = 1..{atoms - 1}, "
+        f"sum(j = i+1..{atoms}, (sigma^2/sum(k = 1..3, (x[i,k] - x[j,k])^2))^6 - "
+        f"(sigma^2/sum(k = 1..3, (x[i,k] - x[j,k])^2))^3))",
+        1.12, {"kind": "process", "precision": "double", "order": 2,
+               "command": ["/usr/bin/python3",
+                           os.path.join(ROOT, "examples", "python-integrator", "lj_cluster_verlet.py")]})
 
 
 SYSTEMS = {"chain": chain_case, "gravity": gravity_case, "lj": lj_case}

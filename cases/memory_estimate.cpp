@@ -48,6 +48,20 @@ int taylor_order_for_log(double minus_log_tolerance) {
 
 }  // namespace
 
+bool double_program(const CaseSpec& spec, const std::string& scalar) {
+  return scalar == "double" && spec.discretization.formalism == "map" && spec.discretization.kind == "process" &&
+         spec.discretization.process_precision == "double";
+}
+
+std::string working_scalar(const CaseSpec& spec, const std::string& scalar) {
+  return double_program(spec, scalar) ? "float128" : scalar;
+}
+
+bool dense_symplecticity(const CaseSpec& spec) {
+  return (spec.discretization.formalism != "qxq" && spec.discretization.formalism != "map") ||
+         spec.dimension <= symplecticity_dense_limit;
+}
+
 double MemoryEstimate::total() const {
   double sum = 0;
   for (const auto& part : parts) sum += part.bytes;
@@ -104,9 +118,8 @@ MemoryEstimate estimate_memory(const CaseSpec& spec, const std::string& scalar, 
   const double n = spec.dimension;
   const double operations = static_cast<double>(spec.formula->operations);
   const double acceleration = static_cast<double>(spec.formula->acceleration_operations);
-  // A program that computes in double is judged with vivv's side in float128 (harness/run/run_case.cpp).
-  const bool double_program = scalar == "double" && spec.discretization.process_precision == "double";
-  const std::string working = double_program ? "float128" : scalar;
+  const bool program_in_double = double_program(spec, scalar);
+  const std::string working = working_scalar(spec, scalar);
   const double number = bytes_per_number(working, digits);
   const std::string per_number = " x " + three_digits(number) + " bytes";
 
@@ -118,7 +131,7 @@ MemoryEstimate estimate_memory(const CaseSpec& spec, const std::string& scalar, 
                   std::to_string(static_cast<long>(operations)) + " operations of L and " +
                       std::to_string(static_cast<long>(acceleration)) + " of its acceleration, " +
                       three_digits(tape_bytes_per_node) + " bytes each"});
-  const ReferenceOrders orders = reference_orders(working, digits, double_program);
+  const ReferenceOrders orders = reference_orders(working, digits, program_in_double);
   held.push_back({"reference flow",
                   expansion_arrays * acceleration * (orders.flow + orders.check + 2) * number,
                   "3 arrays x " + std::to_string(static_cast<long>(acceleration)) +
@@ -129,11 +142,8 @@ MemoryEstimate estimate_memory(const CaseSpec& spec, const std::string& scalar, 
   double sweep_steps = 0;
   for (int N : spec.steps) sweep_steps += N + 1;
   const bool symplecticity = lists(spec, "symplecticity");
-  // A DEL map or a one-step map above symplecticity_dense_limit coordinates is judged by probes and
-  // keeps no Jacobian.
-  const bool dense_symplecticity = (spec.discretization.formalism != "qxq" && spec.discretization.formalism != "map") ||
-                                   spec.dimension <= symplecticity_dense_limit;
-  const double vectors = sweep_vectors_per_step + (symplecticity && !dense_symplecticity ? probe_vectors_per_step : 0);
+  const bool dense_jacobians = dense_symplecticity(spec);
+  const double vectors = sweep_vectors_per_step + (symplecticity && !dense_jacobians ? probe_vectors_per_step : 0);
   held.push_back({"sweep", sweep_steps * vectors * n * number,
                   std::to_string(static_cast<long>(sweep_steps)) + " states of the sweep x " + three_digits(vectors) + " vectors of " +
                       std::to_string(spec.dimension) + per_number});
@@ -144,7 +154,7 @@ MemoryEstimate estimate_memory(const CaseSpec& spec, const std::string& scalar, 
     held.push_back({"dense second derivatives", operations * (1 + 2 * n + 4 * n * n) * number,
                     "each of L's " + std::to_string(static_cast<long>(operations)) +
                         " operations a jet of 1 + 2n + (2n)^2 numbers (Galerkin and TQ discretizations)"});
-  if (symplecticity && dense_symplecticity && !spec.steps.empty())
+  if (symplecticity && dense_jacobians && !spec.steps.empty())
     held.push_back({"symplecticity's Jacobians", static_cast<double>(spec.steps.back()) * 4 * n * n * number,
                     "a dense 2n x 2n matrix for each of the " + std::to_string(spec.steps.back()) +
                         " steps of the longest run"});

@@ -37,6 +37,15 @@ struct MemoryEstimate {
 // or two coordinates hold the process and little else.
 MemoryEstimate estimate_memory(const CaseSpec& spec, const std::string& scalar, int digits);
 
+// Whether `spec` in `scalar` is a program computing in double, whose case vivv computes in float128
+// (harness/run/run_case.cpp), and the scalar vivv's side then computes in.
+bool double_program(const CaseSpec& spec, const std::string& scalar);
+std::string working_scalar(const CaseSpec& spec, const std::string& scalar);
+
+// Whether symplecticity keeps a dense 2n x 2n Jacobian a step for `spec`: every case but a DEL map
+// or a one-step map above symplecticity_dense_limit coordinates, which are judged by probes.
+bool dense_symplecticity(const CaseSpec& spec);
+
 // The bytes of one number in `scalar` at `digits` (MPFR: the number and its limbs).
 double bytes_per_number(const std::string& scalar, int digits);
 

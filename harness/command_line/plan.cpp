@@ -9,7 +9,6 @@
 #include "cases/case_reader.hpp"
 #include "cases/memory_estimate.hpp"
 #include "core/numerics/scalar.hpp"
-#include "core/structure/dense_limit.hpp"
 #include "harness/claims/map_local_order.hpp"
 #include "harness/command_line/command_line.hpp"
 
@@ -26,8 +25,7 @@ bool is_program(const CaseSpec& spec) {
 // steps as docs/claims.md describes.
 std::string claim_work(const CaseSpec& spec, const std::string& id, double sweep_steps) {
   const std::string sweep = "the sweep (" + std::to_string(static_cast<long>(sweep_steps)) + " steps, shared)";
-  const bool map = spec.discretization.formalism == "map";
-  const bool dense = (spec.discretization.formalism != "qxq" && !map) || spec.dimension <= symplecticity_dense_limit;
+  const bool dense = dense_symplecticity(spec);
   if (id == "global-order")
     return sweep + ": its end states against the reference at T" +
            (spec.discretization.formalism == "qxq" ? "; one step at 2^-10 of the finest h" : "");
@@ -64,9 +62,8 @@ int print_plan(std::ostream& out, const std::vector<CaseSpec>& specs, const RunO
     CaseSpec spec = specs[k];
     if (options.scalar) spec.scalar = *options.scalar;
     if (options.digits) spec.digits = *options.digits;
-    const bool double_program = is_program(spec) && spec.scalar == "double" &&
-                                spec.discretization.process_precision == "double";
-    const std::string working = double_program ? "float128" : spec.scalar;
+    const bool program_in_double = double_program(spec, spec.scalar);
+    const std::string working = working_scalar(spec, spec.scalar);
     out << "case " << k + 1 << " of " << specs.size() << ": " << spec.name << " (" << spec.file << ")\n";
     out << "  system: " << spec.dimension << " coordinate" << (spec.dimension == 1 ? "" : "s");
     if (spec.formula && spec.formula->operations)
@@ -76,9 +73,9 @@ int print_plan(std::ostream& out, const std::vector<CaseSpec>& specs, const RunO
                   : std::string());
     out << "; vivv computes in " << working
         << (working == "mpfr" ? " at " + std::to_string(spec.digits) + " digits" : std::string())
-        << (double_program ? " (the program in double)" : "") << "\n";
+        << (program_in_double ? " (the program in double)" : "") << "\n";
     if (spec.formula) {
-      const ReferenceOrders orders = reference_orders(working, spec.digits, double_program);
+      const ReferenceOrders orders = reference_orders(working, spec.digits, program_in_double);
       out << "  reference flow: Taylor series to T = " << three_digits(std::stod(spec.final_time)) << ", order " << orders.flow
           << ", and its cross-check, order " << orders.check << " (kept for the run's later cases on this system)\n";
     } else {

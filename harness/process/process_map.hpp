@@ -159,33 +159,13 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   // nullopt for m < k, and for an answer beyond the problem's scale or whose w Newton does not
   // find from the run's start: the run is then taken one request a step, which finds and names
   // the step.
-  std::optional<State<T, N>> steps(const State<T, N>& x, const T& h, long count) const override {
-    if (!process_->uses_extension(steps_extension) || count < 2) return std::nullopt;
-    return paced_batches(x, count, [&](const State<T, N>& from, long asked) { return batched_request(from, h, asked); });
-  }
+  std::optional<State<T, N>> steps(const State<T, N>& x, const T& h, long count) const override;
 
   // x_1 … x_count in few requests {"h", "q", "p", "steps": k, "trajectory": true}, for a program
   // that took up "steps" and "trajectory": each answer carries, beside the last state, every state
   // its k steps reached ("trajectory": k arrays of 2n decimal strings, q then p), paced as steps();
   // nullopt where steps() would give none, and the run is then taken one request a step.
-  std::optional<std::vector<State<T, N>>> trajectory(const State<T, N>& x, const T& h, long count) const override {
-    if (!process_->uses_extension(steps_extension) || !process_->uses_extension(trajectory_extension) || count < 2)
-      return std::nullopt;
-    std::vector<State<T, N>> states;
-    states.reserve(static_cast<std::size_t>(count));
-    // At most the states whose answer fits in the longest line vivv reads (program.cpp: 2n + (2n)²
-    // numbers of D + 16 characters, twice for spaces), and in 8 MiB of text, so that an answer and
-    // its parsed JSON stay small beside the case (at 114 coordinates and D = 17 about 1 100 states
-    // a request; at 1000 coordinates about 130, still one round trip for many steps).
-    const double per_state = (2 * n) * (digits_ + 16.0);
-    const double line_states = (process_->longest_line() - 4096) / (2 * per_state) - 1;
-    const long fitting = std::max(1L, static_cast<long>(std::min(line_states, 8.0 * 1024 * 1024 / per_state)));
-    const auto end = paced_batches(x, count, [&](const State<T, N>& from, long asked) {
-      return batched_states(from, h, asked, states);
-    }, fitting);
-    if (!end) return std::nullopt;
-    return states;
-  }
+  std::optional<std::vector<State<T, N>>> trajectory(const State<T, N>& x, const T& h, long count) const override;
 
   std::optional<long> reported_evaluations() const override {
     if (!process_->uses_extension(evaluations_extension)) return std::nullopt;
@@ -336,114 +316,21 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   // their end state, or nullopt, which ends the run with nullopt.
   template <class Request>
   std::optional<State<T, N>> paced_batches(const State<T, N>& x, long count, const Request& request,
-                                           long at_most = std::numeric_limits<long>::max()) const {
-    State<T, N> state = x;
-    for (long left = count; left > 0;) {
-      const long asked = std::min({left, batch_, at_most});
-      const auto started = std::chrono::steady_clock::now();
-      const std::optional<State<T, N>> next = request(state, asked);
-      if (!next) return std::nullopt;
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-      const double pace = std::min(1.0, options_.timeout_seconds / 10);
-      const double paced = seconds > 0 ? asked * pace / seconds : 16.0 * asked;
-      batch_ = std::max(1L, static_cast<long>(std::min(16.0 * asked, paced)));
-      state = *next;
-      left -= asked;
-    }
-    return state;
-  }
+                                           long at_most = std::numeric_limits<long>::max()) const;
 
   // One request for `count` steps from x with every state answered (extensions "steps" and
   // "trajectory"), appended to `states`: the end state, or nullopt as batched_request. The
   // answer's "trajectory" must hold the `count` states, each 2n decimal strings at the greeting's
   // digits, the last of them the answer's "q" and "p"; anything else is a malformed answer.
   std::optional<State<T, N>> batched_states(const State<T, N>& x, const T& h, long count,
-                                            std::vector<State<T, N>>& states) const {
-    const std::optional<nlohmann::json> answered = batch_answer(x, h, count, true);
-    if (!answered) return std::nullopt;
-    const nlohmann::json& answer = *answered;
-    const long taken = count;
-    const auto found = answer.find(trajectory_extension);
-    const std::string expected = "an array of the " + std::to_string(taken) +
-                                 " states its steps reached, each an array of 2n = " + std::to_string(2 * n) +
-                                 " decimal strings (q, then p)";
-    if (found == answer.end() || !found->is_array() || found->size() != static_cast<std::size_t>(taken))
-      process_->fail_answer("it took up the extension \"trajectory\" and its answer's \"trajectory\" is " +
-                            (found == answer.end() ? std::string("missing") : quoted_text(found->dump(), 200)) +
-                            ", not " + expected);
-    using std::abs;
-    const T bound = from_decimal<T>(bound_);
-    Vector<T, N> p_end(n);
-    State<T, N> previous = x;
-    for (long k = 0; k < taken; ++k) {
-      const nlohmann::json& row = (*found)[static_cast<std::size_t>(k)];
-      const std::string where = "trajectory[" + std::to_string(k) + "]";
-      if (!row.is_array() || row.size() != static_cast<std::size_t>(2 * n))
-        process_->fail_answer("its answer's \"" + where + "\" is " + quoted_text(row.dump(), 200) + ", not " +
-                              std::to_string(2 * n) + " decimal strings (q, then p)");
-      State<T, N> next{Vector<T, N>(n), Vector<T, N>(n)};
-      for (int i = 0; i < n; ++i) {
-        next.q[i] = answer_decimal<T>(*process_, row[static_cast<std::size_t>(i)], where + "[" + std::to_string(i) + "]",
-                                      digits_);
-        p_end[i] = answer_decimal<T>(*process_, row[static_cast<std::size_t>(n + i)],
-                                     where + "[" + std::to_string(n + i) + "]", digits_);
-        if (!(abs(next.q[i]) <= bound && abs(p_end[i]) <= bound)) return std::nullopt;
-      }
-      if (k + 1 == taken)
-        for (int i = 0; i < n; ++i)
-          if (answer_number<T>(*process_, answer, "q", i, n, digits_) != next.q[i] ||
-              answer_number<T>(*process_, answer, "p", i, n, digits_) != p_end[i])
-            process_->fail_answer("its answer's last state in \"trajectory\" is not its \"q\" and \"p\" (entry " +
-                                  std::to_string(i) + " differs)");
-      try {  // from the state before's w, a step away
-        next.w = velocity_for_momentum(system_, next.q, p_end, previous.w);
-      } catch (const SolverError&) {
-        return std::nullopt;
-      }
-      states.push_back(next);
-      previous = next;
-    }
-    last_ = {previous, p_end};
-    return previous;
-  }
+                                            std::vector<State<T, N>>& states) const;
 
   // The answer to one request for `count` steps from x (extension "steps"; with `every`, each
   // state too: "trajectory"), its evaluations counted; nullopt where it took fewer steps.
-  std::optional<nlohmann::json> batch_answer(const State<T, N>& x, const T& h, long count, bool every) const {
-    nlohmann::json request = state_request(x, h);
-    request[steps_extension] = count;
-    if (every) request[trajectory_extension] = true;
-    nlohmann::json answer = process_->request(request);
-    const long taken = answer_count(*process_, answer, steps_extension, count,
-                                    "the count of steps it took (a whole number, 0 to the " + std::to_string(count) +
-                                        " asked for)");
-    count_evaluations(answer);
-    if (taken < count) return std::nullopt;
-    return answer;
-  }
+  std::optional<nlohmann::json> batch_answer(const State<T, N>& x, const T& h, long count, bool every) const;
 
   // One request for `count` steps from x (extension "steps"): the end state, or nullopt (above).
-  std::optional<State<T, N>> batched_request(const State<T, N>& x, const T& h, long count) const {
-    const std::optional<nlohmann::json> answered = batch_answer(x, h, count, false);
-    if (!answered) return std::nullopt;
-    const nlohmann::json& answer = *answered;
-    State<T, N> end{Vector<T, N>(n), Vector<T, N>(n)};
-    Vector<T, N> p_end(n);
-    using std::abs;
-    const T bound = from_decimal<T>(bound_);
-    for (int i = 0; i < n; ++i) {
-      end.q[i] = answer_number<T>(*process_, answer, "q", i, n, digits_);
-      p_end[i] = answer_number<T>(*process_, answer, "p", i, n, digits_);
-      if (!(abs(end.q[i]) <= bound && abs(p_end[i]) <= bound)) return std::nullopt;
-    }
-    try {  // from x's w, steps away: where Newton does not converge from there, step by step
-      end.w = velocity_for_momentum(system_, end.q, p_end, x.w);
-    } catch (const SolverError&) {
-      return std::nullopt;
-    }
-    last_ = {end, p_end};
-    return end;
-  }
+  std::optional<State<T, N>> batched_request(const State<T, N>& x, const T& h, long count) const;
   using Differences = std::vector<std::vector<R>>;      // [j][i] = ∂y'_i/∂y_j
   using Columns = std::vector<std::vector<std::string>>;  // the same, as decimals
 
@@ -652,4 +539,5 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
 
 }  // namespace vivv
 
+#include "harness/process/process_map_batches.hpp"      // the definitions of the batched requests above
 #include "harness/process/process_map_differences.hpp"  // the definitions of the differences above
