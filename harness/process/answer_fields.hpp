@@ -3,6 +3,7 @@
 // whole numbers. Anything else is a malformed answer: MapProcess::fail_answer names the field.
 #pragma once
 
+#include <charconv>
 #include <cstddef>
 #include <exception>
 #include <nlohmann/json.hpp>
@@ -33,6 +34,15 @@ S answer_decimal(const MapProcess& process, const nlohmann::json& value, const s
   } catch (const std::exception& error) {  // beyond the scalar's range (float128 and MPFR too)
     process.fail_answer(field + ": " + error.what());
   }
+}
+
+// x as the 17 significant digits that a double program reads back as x ("1.2345678901234567e-01",
+// the protocol's D = 17 for a double case): its perturbed inputs written without a wider
+// scalar's decimal conversion.
+inline std::string double_decimal(double x) {
+  char text[32];
+  const auto written = std::to_chars(text, text + sizeof text, x, std::chars_format::scientific, 16);
+  return std::string(text, written.ptr);
 }
 
 // answer[key][i] of an array of n decimal strings (q or p of a system of n coordinates), in S.

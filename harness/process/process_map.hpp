@@ -455,13 +455,12 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   }
 
   // MapDiverged naming the program, the request, the field key[i] and the number when `value`,
-  // from `process`'s answer for a step of size h, lies beyond 10^divergence_digits times the
-  // orbit's size.
+  // from `process`'s answer for a step of size h, lies beyond `bound` (scale_bound_in).
   template <class S>
-  void require_within_scale(const MapProcess& process, const S& value, const char* key, int i,
+  void require_within_scale(const MapProcess& process, const S& value, const S& bound, const char* key, int i,
                             const T& h) const {
     using std::abs;
-    if (abs(value) <= from_decimal<S>(bound_)) return;
+    if (abs(value) <= bound) return;
     throw MapDiverged(process.answering() + ": " + key + "[" + std::to_string(i) + "] = " +
                           to_decimal<S>(value, 6) + " lies beyond 10^" +
                           std::to_string(divergence_digits) + " times the reference orbit's size " +
@@ -479,11 +478,31 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
       y[i] = answer_number<S>(process, answer, "q", i, n, digits);
       y[n + i] = answer_number<S>(process, answer, "p", i, n, digits);
     }
+    const S bound = scale_bound_in<S>();
     for (int i = 0; i < n; ++i) {
-      require_within_scale(process, y[i], "q", i, h);
-      require_within_scale(process, y[n + i], "p", i, h);
+      require_within_scale(process, y[i], bound, "q", i, h);
+      require_within_scale(process, y[n + i], bound, "p", i, h);
     }
     return y;
+  }
+
+  // 10^divergence_digits times the orbit's size in S (read once an answer, not once a number);
+  // in a double the largest finite one where the bound lies beyond double's range.
+  template <class S>
+  S scale_bound_in() const {
+    try {
+      return from_decimal<S>(bound_);
+    } catch (const std::out_of_range&) {
+      return std::numeric_limits<S>::max();
+    }
+  }
+
+  // A double program's answer, read as the doubles it carries (its 17 digits read back as the
+  // double the program wrote) and widened to R exactly: the same numbers as reading the decimals
+  // in R, to 5·10^-17 of each, without R's decimal conversions.
+  std::vector<R> double_answer(const MapProcess& process, const nlohmann::json& answer, const T& h) const {
+    const std::vector<double> read = answer_state<double>(process, answer, digits_, h);
+    return std::vector<R>(read.begin(), read.end());
   }
 
   // (q, p = FL(q, w)) at x as the decimals a request carries.
@@ -508,7 +527,8 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
                                      {"dimension", n},
                                      {"system", system_json_},
                                      {"extensions", nlohmann::json::array(
-                                          {jacobian_extension, evaluations_extension, steps_extension, trajectory_extension})}};
+                                          {jacobian_extension, evaluations_extension, steps_extension, trajectory_extension,
+                                           pipeline_extension})}};
     return std::make_unique<MapProcess>(options_, greeting);
   }
 

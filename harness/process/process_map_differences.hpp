@@ -7,7 +7,10 @@
 
 #include <algorithm>
 #include <array>
+#include <deque>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "harness/process/process_map.hpp"
@@ -25,30 +28,57 @@ typename ProcessMap<System>::Differences ProcessMap<System>::along(MapProcess& p
   Differences result(static_cast<std::size_t>(count), std::vector<R>(2 * n));
   std::vector<R> centre(2 * n);
   for (int j = 0; j < 2 * n; ++j) centre[j] = from_decimal<R>(y[j]);
-  for (int k = 0; k < count; ++k) {
-    const std::vector<R> u = direction(k);
-    // the entry that sets the scale: the largest |u_j| / max(1, |y_j|)
-    int widest = -1;
-    R ratio = 0;
-    for (int j = 0; j < 2 * n; ++j) {
-      const R r = R(abs(u[j])) / max(R(1), R(abs(centre[j])));
-      if (r > ratio) ratio = r, widest = j;
+  // Requests made as the program takes them (MapProcess::requests: one that took up "pipeline"
+  // works on one while vivv reads the last answer and makes the next), each direction's two in turn.
+  int k = -1, side = 1;  // the request made last: direction k, from y + δu (side 0) or y − δu (1)
+  std::vector<R> u;
+  R delta = 0;
+  std::deque<std::pair<int, R>> sent;  // each request's direction and δ, in order, unanswered
+  const auto next = [&]() -> std::optional<nlohmann::json> {
+    if (side == 1) {  // the next direction that is not 0 (J·0 = 0)
+      for (side = 0, ++k; k < count; ++k) {
+        u = direction(k);
+        // the entry that sets the scale: the largest |u_j| / max(1, |y_j|)
+        int widest = -1;
+        R ratio = 0;
+        for (int j = 0; j < 2 * n; ++j) {
+          const R r = R(abs(u[j])) / max(R(1), R(abs(centre[j])));
+          if (r > ratio) ratio = r, widest = j;
+        }
+        if (widest < 0) continue;
+        const R scale = max(R(1), R(abs(centre[widest]))) / R(abs(u[widest]));
+        delta = multiple * pow(R(10), -exponent) * scale;
+        break;
+      }
+      if (k >= count) return std::nullopt;
+    } else {
+      side = 1;
     }
-    if (widest < 0) continue;  // u = 0: J·u = 0
-    const R scale = max(R(1), R(abs(centre[widest]))) / R(abs(u[widest]));
-    const R delta = multiple * pow(R(10), -exponent) * scale;
-    std::array<std::vector<R>, 2> images{std::vector<R>(2 * n), std::vector<R>(2 * n)};
-    for (int side = 0; side < 2; ++side) {
-      nlohmann::json request = {
-          {"h", step}, {"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
+    nlohmann::json request = {{"h", step}, {"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
+    for (int i = 0; i < 2 * n; ++i) {
+      const auto moved = [&] { return side == 0 ? R(centre[i] + delta * u[i]) : R(centre[i] - delta * u[i]); };
+      // A double program gets the double it would read from R's decimal (double_decimal).
+      request[i < n ? "q" : "p"].push_back(u[i] == 0        ? y[i]
+                                           : double_program_ ? double_decimal(static_cast<double>(moved()))
+                                                             : to_decimal<R>(moved()));
+    }
+    sent.emplace_back(k, delta);
+    return request;
+  };
+  std::vector<R> image_plus;  // the step from y + δu; the next answer is the one from y − δu
+  bool minus = false;
+  process.requests(next, [&](const nlohmann::json& answer) {
+    std::vector<R> image = double_program_ ? double_answer(process, answer, h) : answer_state<R>(process, answer, digits, h);
+    const auto [direction_index, width] = sent.front();
+    sent.pop_front();
+    if (!minus) {
+      image_plus = std::move(image);
+    } else {
       for (int i = 0; i < 2 * n; ++i)
-        request[i < n ? "q" : "p"].push_back(
-            u[i] == 0 ? y[i]
-                      : to_decimal<R>(side == 0 ? R(centre[i] + delta * u[i]) : R(centre[i] - delta * u[i])));
-      images[side] = answer_state<R>(process, process.request(request), digits, h);
+        result[direction_index][i] = (image_plus[i] - image[i]) / (2 * width);
     }
-    for (int i = 0; i < 2 * n; ++i) result[k][i] = (images[0][i] - images[1][i]) / (2 * delta);
-  }
+    minus = !minus;
+  });
   return result;
 }
 
@@ -165,8 +195,8 @@ typename ProcessMap<System>::R ProcessMap<System>::noise_near(const std::string&
   using std::abs, std::max, std::pow, std::sqrt;
   const auto image = [&](const std::vector<R>& at) {
     nlohmann::json request = {{"h", step}, {"q", nlohmann::json::array()}, {"p", nlohmann::json::array()}};
-    for (int i = 0; i < 2 * n; ++i) request[i < n ? "q" : "p"].push_back(to_decimal<R>(at[i]));
-    return answer_state<R>(*process_, process_->request(request), digits_, h);
+    for (int i = 0; i < 2 * n; ++i) request[i < n ? "q" : "p"].push_back(double_decimal(static_cast<double>(at[i])));
+    return double_answer(*process_, process_->request(request), h);
   };
   std::vector<R> centre(2 * n);
   for (int j = 0; j < 2 * n; ++j) centre[j] = from_decimal<R>(y[j]);

@@ -15,6 +15,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -403,11 +404,67 @@ nlohmann::json MapProcess::request(const nlohmann::json& message) {
   send(line, last_request_);
   const std::string reply = receive(last_request_);
   ++requests_;
-  nlohmann::json answer = parse_answer(reply, last_request_);
-  if (!answer.is_object())
-    fail(last_request_, "it answered " + shortened(reply) + ", not a JSON object");
-  if (answer.contains("error"))
-    fail(last_request_, "it answered with an error: " + error_text(answer["error"]));
+  return checked_answer(reply, last_request_);
+}
+
+void MapProcess::requests(const std::function<std::optional<nlohmann::json>()>& next,
+                          const std::function<void(const nlohmann::json&)>& read) {
+  if (!uses_extension(pipeline_extension)) {
+    while (const std::optional<nlohmann::json> message = next()) read(request(*message));
+    return;
+  }
+  std::string outgoing;            // requests made, not yet written
+  std::deque<std::string> names;   // the requests sent ahead, in order, not yet answered
+  bool made_all = false;
+  const auto answer = [&] {
+    last_request_ = names.front();
+    names.pop_front();
+    const std::string reply = receive(last_request_, &outgoing);
+    ++requests_;
+    return reply;
+  };
+  try {
+    while (!made_all || !names.empty()) {
+      while (!made_all && names.size() < pipelined_requests) {
+        const std::optional<nlohmann::json> message = next();
+        if (!message) {
+          made_all = true;
+          break;
+        }
+        const std::string line = message->dump();
+        names.push_back("request " + std::to_string(requests_ + 1 + static_cast<long>(names.size())) + " " +
+                        shortened(line));
+        outgoing += line + "\n";
+        write_ahead(outgoing);
+      }
+      if (names.empty()) break;
+      const std::string reply = answer();
+      read(checked_answer(reply, last_request_));
+    }
+  } catch (const MapProcessError&) {
+    throw;  // the program failed: nothing more is read from it
+  } catch (...) {
+    while (!names.empty()) answer();  // their answers, unread: the pipe holds none for the next request
+    throw;
+  }
+}
+
+void MapProcess::write_ahead(std::string& outgoing) {
+  while (!outgoing.empty()) {
+    const ssize_t wrote = ::write(input_, outgoing.data(), outgoing.size());
+    if (wrote > 0) {
+      outgoing.erase(0, static_cast<std::size_t>(wrote));
+      continue;
+    }
+    if (wrote < 0 && errno == EINTR) continue;
+    return;  // a full pipe (or a closed one, which the next receive() names): written as it reads
+  }
+}
+
+nlohmann::json MapProcess::checked_answer(const std::string& reply, const std::string& request_name) {
+  nlohmann::json answer = parse_answer(reply, request_name);
+  if (!answer.is_object()) fail(request_name, "it answered " + shortened(reply) + ", not a JSON object");
+  if (answer.contains("error")) fail(request_name, "it answered with an error: " + error_text(answer["error"]));
   return answer;
 }
 
@@ -502,7 +559,7 @@ void MapProcess::send(const std::string& line, const std::string& request_name) 
   }
 }
 
-std::string MapProcess::receive(const std::string& request_name) {
+std::string MapProcess::receive(const std::string& request_name, std::string* outgoing) {
   const auto deadline = Clock::now() + std::chrono::milliseconds(
                                            static_cast<long long>(options_.timeout_seconds * 1000));
   std::size_t end = 0;
@@ -511,7 +568,9 @@ std::string MapProcess::receive(const std::string& request_name) {
       fail(request_name, "it wrote a line longer than " + std::to_string(longest_line_) +
                              " characters (2 × (2n + (2n)²) numbers of D + 16 characters, at least "
                              "1 MiB)");
-    std::array<pollfd, 2> ready{pollfd{output_, POLLIN, 0}, pollfd{errors_, POLLIN, 0}};
+    const bool writing = outgoing != nullptr && !outgoing->empty();
+    std::array<pollfd, 3> ready{pollfd{output_, POLLIN, 0}, pollfd{errors_, POLLIN, 0},
+                                pollfd{writing ? input_ : -1, POLLOUT, 0}};  // fd −1: not polled
     const int left = milliseconds_until(deadline);
     if (left == 0) {
       std::ostringstream seconds;
@@ -528,6 +587,13 @@ std::string MapProcess::receive(const std::string& request_name) {
       fail(request_name, std::string("poll: ") + std::strerror(errno));
     }
     if (ready[1].revents) drain_stderr();
+    if (ready[2].revents) {  // its input takes more of the requests sent ahead
+      const ssize_t wrote = ::write(input_, outgoing->data(), outgoing->size());
+      if (wrote > 0) outgoing->erase(0, static_cast<std::size_t>(wrote));
+      if (wrote < 0 && errno == EPIPE) fail(request_name, "it stopped reading its input: " + how_it_ended());
+      if (wrote < 0 && errno != EAGAIN && errno != EINTR)
+        fail(request_name, std::string("cannot write to it: ") + std::strerror(errno));
+    }
     if (ready[0].revents) {
       char chunk[4096];
       const ssize_t got = ::read(output_, chunk, sizeof chunk);

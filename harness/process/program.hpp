@@ -11,6 +11,8 @@
 #include <sys/types.h>
 
 #include <algorithm>
+#include <functional>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -22,6 +24,10 @@ namespace vivv {
 
 // The protocol's name and version, in the greeting and in its answer.
 inline constexpr const char* map_protocol = "vivv-map/1";
+
+// The extension a program takes up to be sent several requests before it answers the first
+// (MapProcess::requests).
+inline constexpr const char* pipeline_extension = "pipeline";
 
 // The deepest JSON an answer may hold: an object of arrays of strings is 3 levels (a Jacobian's
 // array of arrays, 4); deeper answers are refused before they are built.
@@ -54,6 +60,19 @@ class MapProcess {
   // request.
   nlohmann::json request(const nlohmann::json& message);
 
+  // Requests next() gives, until it gives none, each answer (an object, checked as request()
+  // checks it) passed to read() in order, with answering() naming its request. A program that took
+  // up the extension "pipeline" (it reads its requests a line at a time and answers each in turn)
+  // is sent up to `pipelined_requests` ahead: it works on one while vivv reads the last answer
+  // and makes the next request, and no request waits for the pipe's round trip; the text is written
+  // as its input takes it and the answers read as they come, so neither side blocks on a full
+  // pipe. Where read() or next() throws, the requests already sent are answered and their answers
+  // left unread before the exception goes on: the next request is answered by its own answer. Any
+  // other program gets one request at a time.
+  void requests(const std::function<std::optional<nlohmann::json>()>& next,
+                const std::function<void(const nlohmann::json&)>& read);
+  static constexpr std::size_t pipelined_requests = 8;
+
   // "'python3 step.py'" for messages.
   std::string name() const;
   // Requests answered so far (the greeting not counted).
@@ -79,7 +98,13 @@ class MapProcess {
   // Closes its input, waits up to a second for it to end, kills its group and reaps it.
   void stop() noexcept;
   void send(const std::string& line, const std::string& request_name);
-  std::string receive(const std::string& request_name);
+  // The next answer line; while it waits, writes what its input takes of `outgoing` (requests
+  // sent ahead, erased as they are written) where there is any.
+  std::string receive(const std::string& request_name, std::string* outgoing = nullptr);
+  // Writes what the program's input takes of `outgoing` now, erasing it; never waits.
+  void write_ahead(std::string& outgoing);
+  // `reply` to `request_name` as an answer object; fail() for an error answer or anything else.
+  nlohmann::json checked_answer(const std::string& reply, const std::string& request_name);
   [[noreturn]] void fail(const std::string& request_name, const std::string& what);
   // "exited with status 1" / "was ended by signal 9 (Killed)", after it closed its output.
   std::string how_it_ended();

@@ -299,3 +299,27 @@ def test_trajectory_is_taken_up_only_with_steps_and_ends_where_the_steps_end():
     answers = talk(explode, [greeting(17, ["steps", "trajectory"]), request], arithmetic="float")
     assert answers[1]["steps"] == 1 and len(answers[1]["trajectory"]) == 1
     assert answers[1]["trajectory"][0] == answers[1]["q"] + answers[1]["p"]
+
+
+def test_pipeline_is_taken_up_and_requests_sent_ahead_are_answered_in_order():
+    """Through real pipes: 8 requests written before any answer is read, answered in their order
+    with what each alone gets."""
+    import subprocess
+    assert talk(euler, [greeting(17, ["pipeline"])], arithmetic="float")[0] == {
+        "protocol": PROTOCOL, "extensions": ["pipeline"]}
+    program = ("import sys; sys.path.insert(0, %r)\n"
+               "from vivv_map import serve\n"
+               "serve(lambda h, q, p: ([q[0] + h * p[0]], [p[0] - h * q[0]]), arithmetic='float')\n"
+               % os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+    requests = [{"h": "0.125", "q": [repr(0.1 * k)], "p": ["0.5"]} for k in range(1, 9)]
+    child = subprocess.Popen([sys.executable, "-c", program], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    child.stdin.write(json.dumps(greeting(17, ["pipeline"])) + "\n")
+    child.stdin.flush()
+    assert json.loads(child.stdout.readline())["extensions"] == ["pipeline"]
+    child.stdin.write("".join(json.dumps(request) + "\n" for request in requests))
+    child.stdin.flush()
+    answers = [json.loads(child.stdout.readline()) for _ in requests]
+    child.stdin.close()
+    assert child.wait(timeout=10) == 0
+    for request, answer in zip(requests, answers):
+        assert answer == talk(euler, [greeting(17), request], arithmetic="float")[1]

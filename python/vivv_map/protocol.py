@@ -1,10 +1,11 @@
 """The loop of protocol vivv-map/1 (docs/process-protocol.md in vivv's source tree).
 
     vivv:    {"protocol": "vivv-map/1", "digits": D, "dimension": n, "system": {...},
-              "extensions": ["jacobian", "evaluations", "steps", "trajectory"]}
+              "extensions": ["jacobian", "evaluations", "steps", "trajectory", "pipeline"]}
     program: {"protocol": "vivv-map/1"}   or, sending its own Jacobian or its count of evaluations,
-             or taking several steps a request (and answering every state of them),
-             {"protocol": "vivv-map/1", "extensions": ["jacobian", "evaluations", "steps", "trajectory"]}
+             or taking several steps a request (and answering every state of them), or reading
+             requests sent before their answers are read,
+             {"protocol": "vivv-map/1", "extensions": ["jacobian", "evaluations", "steps", "trajectory", "pipeline"]}
              (or {"error": "why not"})
     vivv:    {"h": "...", "q": ["...", ...], "p": ["...", ...]}   (+ "jacobian": true where it reads one,
                                                                    + "steps": k for k steps, when agreed,
@@ -35,6 +36,7 @@ JACOBIAN = "jacobian"
 EVALUATIONS = "evaluations"
 STEPS = "steps"
 TRAJECTORY = "trajectory"
+PIPELINE = "pipeline"
 
 
 class Decline(Exception):
@@ -239,8 +241,12 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, evaluations=N
     send_evaluations = evaluations is not None and EVALUATIONS in offered
     take_steps = batch and STEPS in offered
     take_trajectory = take_steps and TRAJECTORY in offered
+    # This loop reads a request a line at a time and answers each before it reads the next, so
+    # vivv may send the next ones before the first is answered (extension "pipeline").
+    take_pipeline = PIPELINE in offered
     taken = [name for name, taken in ((JACOBIAN, send_jacobian), (EVALUATIONS, send_evaluations),
-                                      (STEPS, take_steps), (TRAJECTORY, take_trajectory)) if taken]
+                                      (STEPS, take_steps), (TRAJECTORY, take_trajectory),
+                                      (PIPELINE, take_pipeline)) if taken]
     _reply(output, {"protocol": PROTOCOL, **({"extensions": taken} if taken else {})})
     for line in input:
         request = json.loads(line)

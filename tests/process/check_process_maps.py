@@ -99,6 +99,12 @@ FAULTS = [
     ("flood", 0, r"request 1 .*a line longer than 1048576 characters"),
 ]
 
+PIPELINED_FAULTS = [
+    ("pipeline-error", 40, r"request 41 \{\"h\":\"1\.25\d*e-01\",\"p\":\[\"2\.49998\d*e-01\"\].*"
+                           r"it answered with an error: step size too large"),
+    ("pipeline-overflow", 40, r"request 41 \{\"h\".*q\[0\]: '1\.0+e999999999' is out of range"),
+]
+
 # Programs that do not compute with the digits their greeting asked for: a finding, not bad input.
 # symplecticity errs naming the evidence, global-order is judged, the report is written (exit 1).
 PADDED = [
@@ -158,6 +164,17 @@ def main(argv):
             r"fault\.py " + mode + r".* \(in .*\), " + pattern, mode, TIMEOUT + 10, f"fault-{mode}")
         if not wait_for(lambda: not survivors(marker), 10):
             problems.append(f"{mode}: processes of the map program survived vivv: {survivors(marker)}")
+
+    # The same faults in a Jacobian's requests, which vivv sends ahead of their answers to a
+    # program that took up "pipeline": the message names the request that failed (in a double
+    # program, request 41 is one of the first Jacobian's, by differences), not the last one sent.
+    for mode, good, pattern in PIPELINED_FAULTS:
+        case = write_case(work, f"fault-{mode}", [str(FAULT), mode, str(good)], ("symplecticity",))
+        spec = json.loads(case.read_text())
+        spec["discretization"]["precision"] = "double"
+        case.write_text(json.dumps(spec))
+        run([str(case), "--allow-process", "--process-timeout", str(TIMEOUT)], 4,
+            r"fault\.py " + mode + r".* \(in .*\), " + pattern, mode, TIMEOUT + 10, f"fault-{mode}")
 
     for mode, pattern in PADDED:
         marker = f"vivv-process-test-{uuid.uuid4().hex}"
@@ -251,7 +268,7 @@ def main(argv):
     for problem in problems:
         print(problem, file=sys.stderr)
     if not problems:
-        print(f"{len(FAULTS)} faults, {len(PADDED)} padded programs, 4 signals and a budget: as expected, "
+        print(f"{len(FAULTS) + len(PIPELINED_FAULTS)} faults, {len(PADDED)} padded programs, 4 signals and a budget: as expected, "
               "no survivors")
     return 1 if problems else 0
 

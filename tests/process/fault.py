@@ -11,7 +11,8 @@ deep-answer, deep-decline, deep-error (JSON nested 120 000 deep), stderr-bytes (
 UTF-8 on stderr, then exit 3), terminal-escapes (terminal escape sequences on stderr, then exit 3),
 cut-quote (a line that is not JSON, of two-byte characters, cut by vivv's quoting), overflow (a
 number beyond every scalar's range, 1e999999999, with the digits asked for), huge (1e300000000,
-within MPFR's range, far beyond any orbit's).
+within MPFR's range, far beyond any orbit's); pipeline-error and pipeline-overflow are error and
+overflow by a program that takes up the extension "pipeline".
 With MARKER, it first starts a grandchild that sleeps for an hour with MARKER on its command line,
 so that a test can look for survivors; ESCAPE says how that grandchild leaves the program's process
 group: child (it does not), setsid, setpgid (setpgid(0, 0)) or double-fork (fork, setsid, fork,
@@ -59,7 +60,11 @@ if mode == "decline":
 if mode == "deep-decline":
     send('{"error": ' + deep + '}')
     sys.exit(0)
-send({"protocol": "vivv-map/1"})
+# pipeline-error, pipeline-overflow: error and overflow, by a program that takes up the extension
+# "pipeline" (vivv sends a Jacobian's requests ahead of their answers)
+pipelined = mode.startswith("pipeline-") and "pipeline" in greeting.get("extensions", [])
+mode = mode[len("pipeline-"):] if mode.startswith("pipeline-") else mode
+send({"protocol": "vivv-map/1", **({"extensions": ["pipeline"]} if pipelined else {})})
 digits = greeting["digits"]
 decimal.getcontext().prec = digits + 5
 for count, line in enumerate(sys.stdin):
