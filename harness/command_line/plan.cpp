@@ -42,7 +42,8 @@ std::string claim_work(const CaseSpec& spec, const std::string& id, double sweep
                   ? " by extrapolated central differences (32 program requests a step)"
                   : " by central differences of a second instance at 2D + 10 digits (16 requests a step, more at "
                     "every eighth)") +
-             ", or from the program's own Jacobian where it sends one";
+             " (sent up to 8 ahead of their answers where it takes \"pipeline\"), or from the program's own Jacobian "
+             "where it sends one";
     return sweep + ": the generating form over the blocks' nonzeros and 4 probe pairs a step (about one DEL step a step)";
   }
   if (id == "energy-behaviour") return sweep + ": the energy at every state";

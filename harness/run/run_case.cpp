@@ -108,11 +108,11 @@ void run_in_scalar(CaseSpec& spec, CaseResult& result, bool refine,
   }
   if (formula) {
     result.formula = formula->text;
-    // In MPFR, where the suite spends its time, one and two coordinates at compile-time sizes (a
-    // DEL step at the run-time size costs 1.8 times the fixed one's there). In double, long double
-    // and float128 every size runs at run time: a DEL step there costs up to 4.9 times the fixed
-    // one's, but those fixed-size units were about a quarter of the tool's build and served only
-    // formula systems of one and two coordinates, a few cases of the suite (docs/build.md).
+    // In MPFR, where the suite spends its time, one and two coordinates at compile-time sizes (the
+    // default suite took 1.12 times its CPU time with them at the run-time size, docs/build.md). In
+    // double, long double and float128 every size runs at run time: those fixed-size units were
+    // about a quarter of the tool's build and served only formula systems of one and two
+    // coordinates, a few cases of the suite.
     if constexpr (is_mpfr_v<T>) {
       switch (spec.dimension) {
         case 1: run_on_system(make_formula_system<T, 1>(*formula), spec, result, refine, progress); return;

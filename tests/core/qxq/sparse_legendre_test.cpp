@@ -169,12 +169,47 @@ TYPED_TEST(SparseLegendreTest, ASingularSparseMatrixIsRefused) {
   Eigen::SparseMatrix<T> empty_row(3, 3);
   empty_row.insert(0, 0) = 1, empty_row.insert(1, 1) = 1;
   EXPECT_FALSE(solve_linear(empty_row, right, solution, threshold));
-  // The control: a regular matrix of the same pattern is solved, as densely.
+  // A sparse matrix of at most dense_factorization_limit unknowns is factored dense: the same
+  // refusals by Eigen's SparseLU itself (a limit of 0).
+  for (const int limit : {0, dense_factorization_limit}) {
+    SparseFactorization<T> lu;
+    EXPECT_FALSE(lu.factor(sparse, threshold, limit)) << limit;
+    EXPECT_FALSE(lu.factor(empty_row, threshold, limit)) << limit;
+  }
+  // The control: a regular matrix of the same pattern is solved, as densely, by both.
   dense(2, 0) = 0;
   dense(2, 2) = 1;
   sparse = dense.sparseView();
   ASSERT_TRUE(solve_linear(sparse, right, solution, threshold));
   EXPECT_LE(distance(Vector<T, any_size>(dense * solution), right), 16 * epsilon<T>());
+  for (const int limit : {0, dense_factorization_limit}) {
+    SparseFactorization<T> lu;
+    ASSERT_TRUE(lu.factor(sparse, threshold, limit)) << limit;
+    EXPECT_LE(distance(Vector<T, any_size>(dense * lu.solve(right)), right), 16 * epsilon<T>()) << limit;
+  }
+}
+
+// Either side of dense_factorization_limit the same factorization: a tridiagonal matrix of 2, the
+// limit and twice the limit unknowns solved sparse and dense to rounding, and one made singular
+// (its last row a copy of the one before) refused by both.
+TYPED_TEST(SparseLegendreTest, DenseAndSparseFactorizationsAgreeAcrossTheLimit) {
+  using T = TypeParam;
+  const T threshold = T(16) * epsilon<T>();
+  for (const int n : {2, dense_factorization_limit, 2 * dense_factorization_limit}) {
+    Matrix<T, any_size, any_size> dense = Matrix<T, any_size, any_size>::Zero(n, n);
+    for (int i = 0; i < n; ++i) {
+      dense(i, i) = T(2) + T(i) / 7;
+      if (i + 1 < n) dense(i, i + 1) = -1, dense(i + 1, i) = T(-1) / 3;
+    }
+    const Vector<T, any_size> right = Vector<T, any_size>::Ones(n);
+    SparseFactorization<T> sparse_lu, dense_lu;
+    ASSERT_TRUE(sparse_lu.factor(dense.sparseView(), threshold, 0)) << n;
+    ASSERT_TRUE(dense_lu.factor(dense.sparseView(), threshold, n)) << n;
+    EXPECT_LE(distance(sparse_lu.solve(right), dense_lu.solve(right)), 64 * n * epsilon<T>()) << n;
+    dense.row(n - 1) = dense.row(n - 2);
+    EXPECT_FALSE(sparse_lu.factor(dense.sparseView(), threshold, 0)) << n;
+    EXPECT_FALSE(dense_lu.factor(dense.sparseView(), threshold, n)) << n;
+  }
 }
 
 // L = Σ_k w_{2k−1} w_{2k} + Σ_k w_{2k} w_{2k+1}/4 (+ w_n²/2 for odd n) − Σ cos q_i − Σ (q_{i+1} − q_i)²/2:
