@@ -22,11 +22,7 @@ void run_on_system(const System& system, CaseSpec& spec, CaseResult& result, boo
 // Scalar names CMake can write into a generated file.
 using long_double = long double;
 
-// Formula systems by dimension, for the generated instantiations.
-template <class T>
-using FormulaSystem1 = FormulaSystem<T, 1>;
-template <class T>
-using FormulaSystem2 = FormulaSystem<T, 2>;
+// Formula systems, sized at run time, for the generated instantiations.
 template <class T>
 using FormulaSystemAny = FormulaSystem<T, any_size>;
 
