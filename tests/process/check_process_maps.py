@@ -100,9 +100,10 @@ FAULTS = [
 ]
 
 PIPELINED_FAULTS = [
-    ("pipeline-error", 40, r"request 41 \{\"h\":\"1\.25\d*e-01\",\"p\":\[\"2\.49998\d*e-01\"\].*"
+    ("pipeline-error", 55, r"request 56 \{\"h\":\"1\.25\d*e-01\",\"p\":\[\"2\.50199\d*e-01\"\].*"
                            r"it answered with an error: step size too large"),
-    ("pipeline-overflow", 40, r"request 41 \{\"h\".*q\[0\]: '1\.0+e999999999' is out of range"),
+    ("pipeline-overflow", 55, r"request 56 \{\"h\".*\"p\":\[\"2\.50199\d*e-01\"\].*q\[0\]: "
+                              r"'1\.0+e999999999' is out of range"),
 ]
 
 # Programs that do not compute with the digits their greeting asked for: a finding, not bad input.
@@ -167,7 +168,8 @@ def main(argv):
 
     # The same faults in a Jacobian's requests, which vivv sends ahead of their answers to a
     # program that took up "pipeline": the message names the request that failed (in a double
-    # program, request 41 is one of the first Jacobian's, by differences), not the last one sent.
+    # program, request 56 is the third of the second Jacobian's wide differences, p + 2δ, and
+    # request 57, p − 2δ, is sent before its answer is read), not the last one sent.
     for mode, good, pattern in PIPELINED_FAULTS:
         case = write_case(work, f"fault-{mode}", [str(FAULT), mode, str(good)], ("symplecticity",))
         spec = json.loads(case.read_text())
