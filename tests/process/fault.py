@@ -11,8 +11,10 @@ deep-answer, deep-decline, deep-error (JSON nested 120 000 deep), stderr-bytes (
 UTF-8 on stderr, then exit 3), terminal-escapes (terminal escape sequences on stderr, then exit 3),
 cut-quote (a line that is not JSON, of two-byte characters, cut by vivv's quoting), overflow (a
 number beyond every scalar's range, 1e999999999, with the digits asked for), huge (1e300000000,
-within MPFR's range, far beyond any orbit's); pipeline-error and pipeline-overflow are error and
-overflow by a program that takes up the extension "pipeline".
+within MPFR's range, far beyond any orbit's), huge-once (symplectic Euler with a cubic force, as
+short computes it, and 1e200, in every scalar's range, in the one answer to request GOOD + 1);
+pipeline-error, pipeline-overflow and pipeline-huge-once are those by a program that takes up the
+extension "pipeline".
 With MARKER, it first starts a grandchild that sleeps for an hour with MARKER on its command line,
 so that a test can look for survivors; ESCAPE says how that grandchild leaves the program's process
 group: child (it does not), setsid, setpgid (setpgid(0, 0)) or double-fork (fork, setsid, fork,
@@ -74,7 +76,7 @@ for count, line in enumerate(sys.stdin):
     p = [decimal.Decimal(x) for x in request["p"]]
     if mode == "short" and digits > 30:  # asked for many digits, computes with about half of them
         decimal.getcontext().prec = digits // 2 + 3
-    if mode == "short":  # symplectic Euler with a cubic force: products whose digits get rounded
+    if mode in ("short", "huge-once"):  # symplectic Euler with a cubic force: products whose digits get rounded
         q = [qi + h * pi for qi, pi in zip(q, p)]
         p = [pi - h * qi * qi * qi for qi, pi in zip(q, p)]
     elif mode == "euler":  # explicit Euler on the harmonic oscillator: order 1, not symplectic
@@ -124,6 +126,8 @@ for count, line in enumerate(sys.stdin):
             answer = {"q": ["1." + "0" * (digits - 1) + "e999999999"], "p": write(p)}
         if mode == "huge":
             answer = {"q": ["1." + "0" * (digits - 1) + "e300000000"], "p": write(p)}
+        if mode == "huge-once" and count == good:
+            answer = {"q": ["1." + "0" * (digits - 1) + "e200"], "p": write(p)}
         if mode == "flood":
             sys.stdout.write("x" * (3 << 20))
             sys.stdout.flush()
