@@ -89,7 +89,7 @@ auto ProcessMap<System>::batched_states(const State<T, N>& x, const T& h, long c
         (found == answer.end() ? std::string("missing") : quoted_text(found->dump(), 200)) +
         ", not " + expected);
   using std::abs;
-  const T bound = from_decimal<T>(bound_);
+  const T bound = scale_bound_in<T>();
   Vector<T, N> p_end(n);
   State<T, N> previous = x;
   for (long k = 0; k < taken; ++k) {
@@ -149,7 +149,7 @@ auto ProcessMap<System>::batched_request(const State<T, N>& x, const T& h, long 
   State<T, N> end{Vector<T, N>(n), Vector<T, N>(n)};
   Vector<T, N> p_end(n);
   using std::abs;
-  const T bound = from_decimal<T>(bound_);
+  const T bound = scale_bound_in<T>();
   for (int i = 0; i < n; ++i) {
     end.q[i] = answer_number<T>(*process_, answer, "q", i, n, digits_);
     p_end[i] = answer_number<T>(*process_, answer, "p", i, n, digits_);

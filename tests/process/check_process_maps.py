@@ -194,10 +194,9 @@ def main(argv):
         subprocess.run([vivv, "run", str(case), "--allow-process", "--out", str(out), "--quiet"], capture_output=True,
                        text=True, timeout=120)
         report = out / "report.json"
-        reports[mode] = ({claim["id"]: (claim["verdict"], claim.get("error"), claim.get("series"))
-                          for claim in json.loads(report.read_text())["cases"][0]["claims"]}
-                         if report.exists() else None)
         claims = json.loads(report.read_text())["cases"][0]["claims"] if report.exists() else []
+        reports[mode] = ({claim["id"]: (claim["verdict"], claim.get("error"), claim.get("series")) for claim in claims}
+                         if report.exists() else None)
         symplecticity = next((claim for claim in claims if claim["id"] == "symplecticity"), {})
         if symplecticity.get("verdict") != "pass" or "runs that finished (N = 16, 32)" not in symplecticity.get(
                 "explanation", ""):
