@@ -297,17 +297,14 @@ void read_formula_system(Reader& system, CaseSpec& spec) {
   }
   try {
     record_within_limits(*definition, system);
-    switch (n) {
-      case 1: definition->operations = make_formula_system<long double, 1>(*definition).program->nodes.size(); break;
-      case 2: definition->operations = make_formula_system<long double, 2>(*definition).program->nodes.size(); break;
-      default: {
-        const auto made = make_formula_system<long double, any_size>(*definition);
-        definition->operations = made.program->nodes.size();
-        try {  // a singular mass matrix is refused with its reason by check_initial_state
-          definition->acceleration_operations = sparse_euler_lagrange_tape(*made.derivatives).nodes.size();
-        } catch (const SingularLagrangianError&) {
-        }
-        break;
+    const auto made = make_formula_system<long double, any_size>(*definition);
+    definition->operations = made.program->nodes.size();
+    // The acceleration's tape, for the memory estimate of a system of more than two coordinates
+    // (check_memory); a singular mass matrix is refused with its reason by check_initial_state.
+    if (n > 2) {
+      try {
+        definition->acceleration_operations = sparse_euler_lagrange_tape(*made.derivatives).nodes.size();
+      } catch (const SingularLagrangianError&) {
       }
     }
   } catch (const FormulaError& error) {
@@ -339,31 +336,13 @@ const RegisteredSystem* registered_system(Reader& system) {
 
 namespace {
 
-// d²L/dw² of `system` at (q, w), or a CaseError naming the field when it is singular there.
-template <class System>
-void check_regular(const System& system, const CaseSpec& spec, const std::string& file) {
+// d²L/dw² of `system` at (q, w) dense, or a CaseError naming `field` with its determinant.
+template <class System, class V>
+void check_regular_dense(const System& system, const V& q, const V& w, const std::string& field,
+                         const std::string& file) {
   using T = typename System::Scalar;
   constexpr int N = System::dimension;
-  const int n = spec.dimension;
-  Vector<T, N> q(n), w(n);
-  for (int i = 0; i < n; ++i) q[i] = from_decimal<T>(spec.q[i]), w[i] = from_decimal<T>(spec.w[i]);
-  const std::string field = spec.formula ? "system.lagrangian" : "initial";
   using std::isfinite;
-  if constexpr (SparselyDifferentiated<System>) {
-    // Sized at run time: d²L/dw² sparse, factored sparse; no determinant, which over- or
-    // underflows for many coordinates although the matrix is well conditioned.
-    try {
-      (void)sparse_euler_lagrange_acceleration(system, q, w);
-    } catch (const SingularLagrangianError& error) {
-      const std::string what = error.what();
-      if (what.find("not finite") != std::string::npos)
-        throw CaseError(file, field, "L is not finite at the initial state: the state is outside the Lagrangian's domain");
-      throw CaseError(file, field, "the Lagrangian is not regular at the initial state: d2L/dw2 is singular there (a "
-                                   "pivot of its LU at most 1024 epsilon times the largest), so the Euler–Lagrange "
-                                   "equations do not determine the acceleration");
-    }
-    return;
-  }
   const auto d = lagrangian_derivatives(system, q, w);
   if (!isfinite(d.value))
     throw CaseError(file, field, "L is not finite at the initial state: the state is outside the Lagrangian's domain");
@@ -377,10 +356,39 @@ void check_regular(const System& system, const CaseSpec& spec, const std::string
                                      "Euler–Lagrange equations do not determine the acceleration)");
 }
 
+// d²L/dw² of `system` at (q, w), or a CaseError naming the field when it is singular there.
+template <class System>
+void check_regular(const System& system, const CaseSpec& spec, const std::string& file) {
+  using T = typename System::Scalar;
+  constexpr int N = System::dimension;
+  const int n = spec.dimension;
+  Vector<T, N> q(n), w(n);
+  for (int i = 0; i < n; ++i) q[i] = from_decimal<T>(spec.q[i]), w[i] = from_decimal<T>(spec.w[i]);
+  const std::string field = spec.formula ? "system.lagrangian" : "initial";
+  if constexpr (SparselyDifferentiated<System>) {
+    // Beyond two coordinates d²L/dw² sparse, factored sparse; no determinant, which over- or
+    // underflows for many coordinates although the matrix is well conditioned. One or two
+    // coordinates: dense, and the message gives the determinant.
+    if (n <= 2) return check_regular_dense(system, q, w, field, file);
+    try {
+      (void)sparse_euler_lagrange_acceleration(system, q, w);
+    } catch (const SingularLagrangianError& error) {
+      const std::string what = error.what();
+      if (what.find("not finite") != std::string::npos)
+        throw CaseError(file, field, "L is not finite at the initial state: the state is outside the Lagrangian's domain");
+      throw CaseError(file, field, "the Lagrangian is not regular at the initial state: d2L/dw2 is singular there (a "
+                                   "pivot of its LU at most 1024 epsilon times the largest), so the Euler–Lagrange "
+                                   "equations do not determine the acceleration");
+    }
+    return;
+  }
+  check_regular_dense(system, q, w, field, file);
+}
+
 }  // namespace
 
 // The initial state in the formula's domain (sqrt, log, powers, quotients) and the Lagrangian
-// regular there, checked in long double before any work.
+// regular there, checked in long double before any work, at the run-time size.
 void check_initial_state(const CaseSpec& spec, const std::string& file) {
   using T = long double;
   std::vector<T> q, w;
@@ -391,16 +399,10 @@ void check_initial_state(const CaseSpec& spec, const std::string& file) {
     } catch (const FormulaError& error) {
       throw CaseError(file, "system.lagrangian", describe_formula_error(spec.formula->text, error));
     }
-    switch (spec.dimension) {
-      case 1: check_regular(make_formula_system<T, 1>(*spec.formula), spec, file); break;
-      case 2: check_regular(make_formula_system<T, 2>(*spec.formula), spec, file); break;
-      default: check_regular(make_formula_system<T, any_size>(*spec.formula), spec, file); break;
-    }
-    return;
   }
-  std::vector<std::string> parameters;
-  for (const auto& [name, value] : spec.parameters) parameters.push_back(value);
-  visit_system<T>(spec.system, parameters, [&](const auto& system) { check_regular(system, spec, file); });
+  // A catalogue system through its formula twin, as it runs (harness/run/run_case.cpp).
+  check_regular(make_formula_system<T, any_size>(spec.formula ? *spec.formula : catalogue_twin(spec.system, spec.parameters)),
+                spec, file);
 }
 
 void check_memory(const CaseSpec& spec, const std::string& file, const std::string& scalar, int digits) {

@@ -29,23 +29,11 @@
 namespace vivv {
 
 // The case's system built anew from its case file at the current MPFR precision (a system
-// built at another precision keeps that precision's parameters).
+// built at another precision keeps that precision's parameters): a catalogue system as its
+// formula twin, as every case runs it (harness/run/run_case.cpp).
 template <class T, int N>
 FormulaSystem<T, N> system_at_current_precision(const CaseSpec& spec, const FormulaSystem<T, N>&) {
   return make_formula_system<T, N>(spec.formula ? *spec.formula : catalogue_twin(spec.system, spec.parameters));
-}
-
-template <LagrangianSystem System>
-System system_at_current_precision(const CaseSpec& spec, const System&) {
-  using T = typename System::Scalar;
-  std::vector<std::string> parameters;
-  for (const auto& [name, value] : spec.parameters) parameters.push_back(value);
-  std::optional<System> rebuilt;
-  visit_system<T>(spec.system, parameters, [&](const auto& system) {
-    if constexpr (std::is_same_v<std::decay_t<decltype(system)>, System>) rebuilt.emplace(system);
-  });
-  if (!rebuilt) throw std::invalid_argument("precision-leak: system '" + spec.system + "' could not be rebuilt");
-  return *rebuilt;
 }
 
 struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {

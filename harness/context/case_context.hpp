@@ -9,6 +9,7 @@
 #include <map>
 #include <initializer_list>
 #include <mutex>
+#include <optional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -28,8 +29,8 @@
 #include "harness/process/process_map.hpp"
 #include "harness/context/reference_cache.hpp"
 #include "harness/context/shared_references.hpp"
-#include "references/reference_flow.hpp"
-#include "references/taylor_reference.hpp"
+#include "cases/catalogue.hpp"
+#include "references/case_reference.hpp"
 
 namespace vivv {
 
@@ -243,6 +244,48 @@ class CostMeter {
   std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
 };
 
+// The closed-form flow of the case's catalogue system, chosen at run time
+// (references/case_reference.hpp): in MPFR, for a catalogue system with a ClosedFormFlow
+// (references/reference_flow.hpp: the harmonic oscillator, the pendulum, Kepler's problem), whose
+// claims run on its formula twin; none for a formula or a registered system. In double, long
+// double and float128 every system's reference is the Taylor flow at its floor, cheap there, as it
+// was before closed forms were chosen at run time (every verdict kept); in MPFR the Taylor flow's
+// order and cost grow with the digits, and a closed form costs nothing.
+template <LagrangianSystem System>
+std::optional<typename CaseReference<System>::ClosedForm> catalogue_closed_form(const CaseSpec& spec) {
+  using T = typename System::Scalar;
+  using Full = State<T, System::dimension>;
+  using ClosedForm = typename CaseReference<System>::ClosedForm;
+  std::optional<ClosedForm> closed;
+  if constexpr (is_mpfr_v<T>) {
+    if (spec.formula) return closed;
+    const auto choose = [&](auto catalogue) {
+      using Catalogue = decltype(catalogue);
+      if constexpr (has_closed_form_v<Catalogue>) {
+        if (closed || spec.system != Catalogue::name) return;
+        std::vector<T> values;
+        for (const auto& [name, value] : spec.parameters) values.push_back(from_decimal<T>(value));
+        catalogue.set(values);
+        const auto advance = [catalogue](const Full& start, const T& t) {
+          constexpr int d = Catalogue::dimension;
+          if (start.q.size() != d || start.w.size() != d)
+            throw std::logic_error(std::string("the closed form of ") + Catalogue::name + " asked for a state of " +
+                                   std::to_string(start.q.size()) + " coordinates");
+          State<T, d> x;
+          for (int i = 0; i < d; ++i) x.q[i] = start.q[i], x.w[i] = start.w[i];
+          const State<T, d> y = ClosedFormFlow<Catalogue>::advance(catalogue, x, t);
+          Full end{zero_vector<T, System::dimension>(d), zero_vector<T, System::dimension>(d)};
+          for (int i = 0; i < d; ++i) end.q[i] = y.q[i], end.w[i] = y.w[i];
+          return end;
+        };
+        closed.emplace(ClosedForm{advance, ClosedFormFlow<Catalogue>::method()});
+      }
+    };
+    std::apply([&](auto... catalogue) { (choose(catalogue), ...); }, CatalogueSystems<T>{});
+  }
+  return closed;
+}
+
 // An order claim's prediction: `order`, exact when the case declared it (then
 // never below the theorem's own bound).
 struct OrderPrediction {
@@ -258,9 +301,10 @@ struct CaseContext {
   const CaseSpec& spec;
   System system;
   int n;  // the system's coordinates (N, or its run-time size)
-  // Closed forms where they exist, the Taylor-series flow otherwise: shared by the run's cases on
-  // the same system, scalar and tolerance (make_reference).
-  using Reference = std::conditional_t<has_closed_form_v<System>, ReferenceFlow<System>, TaylorReference<System>>;
+  // A closed form where the catalogue system has one (in MPFR: catalogue_closed_form), the
+  // Taylor-series flow otherwise, shared by the run's cases on the same system, scalar and
+  // tolerance (make_reference).
+  using Reference = CaseReference<System>;
   // Where the reference came from (make_reference): made here, kept from an earlier case of the
   // run, or made here and told an earlier run's answers (--reference-cache).
   enum class ReferenceOrigin { made, kept, recalled };
@@ -361,27 +405,24 @@ struct CaseContext {
     const T tolerance =
         reference_tolerance_for<T>(spec.digits, spec.discretization.process_precision == "double");
     origin = ReferenceOrigin::made;
-    if constexpr (has_closed_form_v<System>) {
-      return Reference(system, tolerance);
-    } else {
-      const std::string key = reference_key(spec);
-      bool kept = false;
-      Reference reference = shared_reference<Reference>(
-          key,
-          [&] {
-            Reference made(system, tolerance);
-            if (recall_reference_answers(made, key, spec.dimension)) origin = ReferenceOrigin::recalled;
-            return made;
-          },
-          kept);
-      if (kept) origin = ReferenceOrigin::kept;
-      return reference;
-    }
+    if (auto closed = catalogue_closed_form<System>(spec)) return Reference(system, std::move(*closed));
+    const std::string key = reference_key(spec);
+    bool kept = false;
+    Reference reference = shared_reference<Reference>(
+        key,
+        [&] {
+          Reference made(system, tolerance);
+          if (recall_reference_answers(made, key, spec.dimension)) origin = ReferenceOrigin::recalled;
+          return made;
+        },
+        kept);
+    if (kept) origin = ReferenceOrigin::kept;
+    return reference;
   }
 
   // With --reference-cache, the answers the reference gave, written for the next run.
   void save_reference_answers() const {
-    if constexpr (!has_closed_form_v<System>) keep_reference_answers(reference, reference_key(spec));
+    if (!reference.closed_form()) keep_reference_answers(reference, reference_key(spec));
   }
 
   // A state of the run for a message: the initial state as the case file writes it, another with

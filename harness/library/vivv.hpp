@@ -233,18 +233,11 @@ void register_map(const std::string& name, int order, Method method) {
       return std::shared_ptr<const OneStepMap<T, n>>(std::make_shared<const UserMap<Method, T, n>>(info, method, system));
     };
   };
-  // Fixed sizes 1 and 2 in MPFR alone: the other scalars size every system at run time.
-  auto add_sizes = [&]<class T>() {
-    if constexpr (is_mpfr_v<T>) {
-      add.template operator()<T, 1>();
-      add.template operator()<T, 2>();
-    }
-    add.template operator()<T, any_size>();
-  };
-  add_sizes.template operator()<double>();
-  add_sizes.template operator()<long double>();
-  add_sizes.template operator()<quad>();
-  add_sizes.template operator()<mpfr_real>();
+  // Every scalar sizes every system at run time (harness/run/run_case.cpp).
+  add.template operator()<double, any_size>();
+  add.template operator()<long double, any_size>();
+  add.template operator()<quad, any_size>();
+  add.template operator()<mpfr_real, any_size>();
   registered_maps().push_back(info);
   detail::remember_registration("register_map", name, method, order);
 }

@@ -6,11 +6,9 @@
 #include <limits>
 #include <memory>
 
-#include "cases/catalogue.hpp"
 #include "harness/claims/registry.hpp"
 #include "harness/verdicts/order_fit.hpp"
 #include "harness/run/run_system.hpp"
-#include "references/reference_flow.hpp"
 
 namespace vivv {
 
@@ -60,36 +58,9 @@ std::optional<std::string> unsettled_series(const std::vector<ClaimResult>& clai
 
 namespace {
 
-// The catalogue systems compiled in MPFR: those whose reference is a closed-form flow
-// (references/reference_flow.hpp), which their formula twins would lose. Each compiled system
-// costs 14 to 26 s of CPU in its MPFR unit's build (docs/build.md); every other catalogue system
-// runs through its formula twin, in MPFR as in the other scalars. harness/CMakeLists.txt
-// instantiates run_on_system for exactly these.
-template <class T>
-using CompiledCatalogueSystems = std::tuple<HarmonicOscillator<T>, Pendulum<T>, Kepler<T>>;
-
-template <class... Systems>
-constexpr int closed_forms_among(std::tuple<Systems...>) {
-  return (int{has_closed_form_v<Systems>} + ...);
-}
-static_assert(closed_forms_among(CompiledCatalogueSystems<double>{}) ==
-                      std::tuple_size_v<CompiledCatalogueSystems<double>> &&
-                  closed_forms_among(CatalogueSystems<double>{}) ==
-                      std::tuple_size_v<CompiledCatalogueSystems<double>>,
-              "CompiledCatalogueSystems must be exactly the catalogue systems with a closed-form flow");
-
-template <class T>
-bool compiled_in_scalar(const std::string& system) {
-  if constexpr (!is_mpfr_v<T>) {
-    return false;
-  } else {
-    return std::apply([&](auto... compiled) { return ((system == decltype(compiled)::name) || ...); },
-                      CompiledCatalogueSystems<T>{});
-  }
-}
-
-// `spec` run in scalar T: formula systems of any dimension in every scalar, the catalogue systems
-// with a closed-form flow compiled in MPFR, every other catalogue system through its formula twin.
+// `spec` run in scalar T: every system at the run-time size, a catalogue system through its formula
+// twin (its closed-form flow, where it has one, chosen at run time as its reference in MPFR:
+// harness/context/case_context.hpp, catalogue_closed_form).
 template <class T>
 void run_in_scalar(CaseSpec& spec, CaseResult& result, bool refine,
                    const std::function<void(const std::string&)>& progress) {
@@ -97,29 +68,14 @@ void run_in_scalar(CaseSpec& spec, CaseResult& result, bool refine,
   result.digits = is_mpfr_v<T> ? spec.digits : std::numeric_limits<T>::digits10;
   result.precision_bits = precision_bits<T>();
   std::shared_ptr<const FormulaSystemDefinition> formula = spec.formula;
-  if (!formula && !compiled_in_scalar<T>(spec.system)) {
+  if (!formula) {
     formula = std::make_shared<const FormulaSystemDefinition>(catalogue_twin(spec.system, spec.parameters));
-    result.implementation =
-        "formula twin of the catalogue system (compiled only in mpfr, and only those with a closed-form flow)";
+    result.implementation = "formula twin of the catalogue system";
   } else {
-    result.implementation = !formula            ? "compiled catalogue system"
-                            : formula->recorded ? "registered C++ system, recorded on a tape"
-                                                : "formula";
+    result.implementation = formula->recorded ? "registered C++ system, recorded on a tape" : "formula";
   }
-  if (formula) {
-    result.formula = formula->text;
-    // Every scalar and size at the run-time size: with a small system's LU factored dense it took
-    // 0.84 times the fixed sizes' CPU time on the default suite's MPFR cases of 1 and 2
-    // coordinates (docs/build.md).
-    run_on_system(make_formula_system<T, any_size>(*formula), spec, result, refine, progress);
-    return;
-  }
-  if constexpr (is_mpfr_v<T>) {
-    std::vector<std::string> parameters;
-    for (const auto& [name, value] : spec.parameters) parameters.push_back(value);
-    visit_system<T, CompiledCatalogueSystems<T>>(
-        spec.system, parameters, [&](const auto& system) { run_on_system(system, spec, result, refine, progress); });
-  }
+  result.formula = formula->text;
+  run_on_system(make_formula_system<T, any_size>(*formula), spec, result, refine, progress);
 }
 
 }  // namespace

@@ -1,7 +1,6 @@
-// run_on_system: a case run on one system type, compiled once per system and
-// scalar (harness/run/run_system_impl.hpp holds the definition, CMake generates the
-// explicit instantiations of the catalogue systems and of formula systems of
-// dimension 1 and 2 and of any size, grouped by scalar and dimension into a few units).
+// run_on_system: a case run on one system type (harness/run/run_system_impl.hpp holds the
+// definition; CMake generates its one instantiation per scalar, for formula systems sized at run
+// time, which every system runs as: harness/run/run_case.cpp).
 #pragma once
 
 #include <functional>

@@ -149,8 +149,8 @@ TEST(CaseFile, CatalogueBuildsEverySystemWithItsDefaults) {
     for (const auto& p : info.parameters) defaults.push_back(p.default_value);
     int dimension = visit_system<double>(info.name, defaults, [](auto system) { return decltype(system)::dimension; });
     EXPECT_EQ(dimension, info.dimension);
-    // Every catalogue system runs through its formula twin but in MPFR with a closed-form flow
-    // (harness/run/run_case.cpp): a system without one could not run.
+    // Every catalogue system runs through its formula twin (harness/run/run_case.cpp): a system
+    // without one could not run.
     std::vector<std::pair<std::string, std::string>> named;
     for (const auto& p : info.parameters) named.emplace_back(p.name, p.default_value);
     EXPECT_EQ(static_cast<int>(catalogue_twin(info.name, named).coordinates.size()), info.dimension) << info.name;

@@ -1,10 +1,11 @@
 // The reference flow and odeint's maps on systems sized at run time (issue 50 item 7), in double,
 // long double, float128 and MPFR: a chain of n coordinates written as a formula (fixed ends, a
 // quartic on-site term), n = 1, 2, 7 and 64.
-//   n = 1, 2:  the Taylor reference at run-time size gives the fixed size's states, to its tolerance;
 //   every n:   the reference keeps its promises — F_{−t}(F_t(x)) = x and E(F_t(x)) = E(x) to a small
 //              multiple of its tolerance, its own error estimate within it — and odeint's
-//              velocity Verlet has the Jacobian central differences of its step give.
+//              velocity Verlet has the Jacobian central differences of its step give. (At 1 and 2
+//              coordinates the flow is also checked against closed forms: the catalogue's twins in
+//              tests/core/formulas/formula_system_test.cpp.)
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -35,26 +36,6 @@ template <class T>
 T requested_tolerance() {
   using std::cbrt;
   return cbrt(epsilon<T>()) * cbrt(epsilon<T>());
-}
-
-template <class T, int n>
-void expect_fixed_and_run_time_references_agree() {
-  const FormulaSystemDefinition definition = chain(n);
-  TaylorReference<FormulaSystem<T, n>> fixed(make_formula_system<T, n>(definition), requested_tolerance<T>());
-  TaylorReference<FormulaSystem<T, any_size>> sized(make_formula_system<T, any_size>(definition),
-                                                    requested_tolerance<T>());
-  ASSERT_EQ(fixed.tolerance(), sized.tolerance());
-  const T t = T(1) / 2;
-  const State<T, n> a = fixed.advance(chain_state<T, n>(n), t);
-  const State<T, any_size> b = sized.advance(chain_state<T, any_size>(n), t);
-  ASSERT_EQ(b.q.size(), n);
-  EXPECT_LE(distance(a.q, b.q), 2 * fixed.tolerance());
-  EXPECT_LE(distance(a.w, b.w), 2 * fixed.tolerance());
-}
-
-TYPED_TEST(AnySizeReferenceTest, OneAndTwoCoordinatesGiveTheFixedSizesStates) {
-  expect_fixed_and_run_time_references_agree<TypeParam, 1>();
-  expect_fixed_and_run_time_references_agree<TypeParam, 2>();
 }
 
 template <class T>

@@ -1,12 +1,9 @@
 // Systems sized at run time (any_size): a chain of n coordinates written as a formula, in double,
 // long double, float128 and MPFR.
-//   n = 1, 2: in MPFR, whose systems of 1 and 2 coordinates vivv runs at compile-time sizes, and in
-//             double, the run-time path gives the compile-time path's numbers (values,
-//             derivatives, discrete Legendre transforms and their Hessian blocks, a DEL step, the
-//             Euler–Lagrange acceleration, and in MPFR an odeint step and its Jacobian), to a few
-//             ulps. Each scalar costs 30 to 40 s of this file's compile time at -O0 (docs/build.md);
-//             long double and float128 take double's code path and are checked at run-time size
-//             below;
+//   n = 1, 2: L's value and derivatives, the Euler–Lagrange acceleration, the midpoint rule's
+//             discrete Legendre transforms and their Hessian blocks against the chain's closed
+//             forms to a few ulps, and a DEL step solved, in every scalar (every system of every
+//             size runs at the run-time size);
 //   n = 7:    every derivative against central differences of values, and a DEL step solved;
 //   n = 64:   first and second derivatives against differences and a DEL step solved, in every
 //             scalar (from L's sparse derivatives).
@@ -18,7 +15,6 @@
 
 #include "cases/formula_parser.hpp"
 #include "core/formulas/formula_system.hpp"
-#include "core/maps/odeint_map.hpp"
 #include "core/qxq/del_evolution.hpp"
 #include "core/qxq/discrete_lagrangian.hpp"
 #include "tests/chain_formula.hpp"
@@ -35,63 +31,58 @@ using testing::chain;
 using testing::chain_state;
 using testing::distance;
 
-template <class T, int n>
-void expect_same_numbers_at_fixed_and_run_time_size() {
-  const FormulaSystemDefinition definition = chain(n);
-  const auto fixed = make_formula_system<T, n>(definition);
-  const auto sized = make_formula_system<T, any_size>(definition);
-  ASSERT_EQ(sized.size(), n);
-  const T tolerance = 64 * epsilon<T>();
-  const State<T, n> x = chain_state<T, n>(n);
-  const State<T, any_size> y = chain_state<T, any_size>(n);
+// The chain's numbers in closed form (M = I, no w·q coupling, S the springs' energy ½ qᵀ K q with
+// K tridiagonal 2, −1; for n = 1 the two end springs are one, K = 2):
+//   L = |w|²/2 − S(q) − Σ q_i⁴/4,  L_q = −K q − q³,  L_qq = −K − 3 diag(q²),  a = L_q;
+// the midpoint rule, m = (q_b + q_e)/2, v = (q_e − q_b)/h:
+//   p_begin = v − (h/2) L_q(m),  p_end = v + (h/2) L_q(m),
+//   ∂p_begin/∂q_b = −I/h − (h/4) L_qq(m),  ∂p_begin/∂q_e = I/h − (h/4) L_qq(m),  ∂p_end/∂q_e = I/h + (h/4) L_qq(m).
+template <class T>
+void expect_closed_form_numbers(int n) {
+  using std::abs;
+  using Vec = Vector<T, any_size>;
+  using Mat = Matrix<T, any_size, any_size>;
+  const auto system = make_formula_system<T, any_size>(chain(n));
+  ASSERT_EQ(system.size(), n);
+  const T tolerance = 64 * epsilon<T>() * 16;  // entries up to 1/h = 8
+  const State<T, any_size> x = chain_state<T, any_size>(n);
+  Mat K = Mat::Zero(n, n);
+  for (int i = 0; i < n; ++i) {
+    K(i, i) = 2;
+    if (i + 1 < n) K(i, i + 1) = K(i + 1, i) = -1;
+  }
+  const auto L_q = [&](const Vec& q) { return Vec(-K * q - Vec(q.array().cube().matrix())); };
+  const auto L_qq = [&](const Vec& q) { return Mat(-K - Mat(3 * q.array().square().matrix().asDiagonal())); };
+  const Mat I = Mat::Identity(n, n);
 
-  const auto a = lagrangian_derivatives(fixed, x.q, x.w);
-  const auto b = lagrangian_derivatives(sized, y.q, y.w);
-  EXPECT_LE(abs(T(a.value - b.value)), tolerance);
-  EXPECT_LE(distance(a.dL_dq, b.dL_dq), tolerance);
-  EXPECT_LE(distance(a.dL_dw, b.dL_dw), tolerance);
-  EXPECT_LE(distance(a.d2L_dw2, b.d2L_dw2), tolerance);
-  EXPECT_LE(distance(a.d2L_dwdq, b.d2L_dwdq), tolerance);
-  EXPECT_LE(distance(euler_lagrange_acceleration(fixed, x.q, x.w), euler_lagrange_acceleration(sized, y.q, y.w)),
-            tolerance);
+  const auto d = lagrangian_derivatives(system, x.q, x.w);
+  const T value = x.w.squaredNorm() / 2 - x.q.dot(K * x.q) / 2 - x.q.array().square().square().sum() / 4;
+  EXPECT_LE(abs(T(d.value - value)), tolerance);
+  EXPECT_LE(distance(d.dL_dq, L_q(x.q)), tolerance);
+  EXPECT_LE(distance(d.dL_dw, x.w), tolerance);
+  EXPECT_LE(distance(d.d2L_dw2, I), tolerance);
+  EXPECT_LE(distance(d.d2L_dwdq, Mat(Mat::Zero(n, n))), tolerance);
+  EXPECT_LE(distance(euler_lagrange_acceleration(system, x.q, x.w), L_q(x.q)), tolerance);
 
   QxQDiscretization<T> midpoint;
   midpoint.rule = QxQRule::midpoint;
   const T h = T(1) / 8;
-  const Vector<T, n> x1 = x.q + h * x.w;
-  const Vector<T, any_size> y1 = y.q + h * y.w;
-  const auto c = discrete_legendre(fixed, midpoint, x.q, x1, h);
-  const auto d = discrete_legendre(sized, midpoint, y.q, y1, h);
-  EXPECT_LE(distance(c.p_begin, d.p_begin), tolerance);
-  EXPECT_LE(distance(c.p_end, d.p_end), tolerance);
-  EXPECT_LE(distance(c.dp_begin_dq_b, d.dp_begin_dq_b), tolerance);
-  EXPECT_LE(distance(c.dp_begin_dq_e, d.dp_begin_dq_e), tolerance);
-  EXPECT_LE(distance(c.dp_end_dq_e, d.dp_end_dq_e), tolerance);
-  const auto [x2, fixed_report] = del_step(fixed, matched_scheme(midpoint), x.q, x1, h);
-  const auto [y2, sized_report] = del_step(sized, matched_scheme(midpoint), y.q, y1, h);
-  ASSERT_TRUE(fixed_report.converged && sized_report.converged);
-  EXPECT_EQ(fixed_report.iterations, sized_report.iterations);
-  EXPECT_LE(distance(x2, y2), tolerance);
-
-  // odeint's maps come from the library's instantiations (harness/CMakeLists.txt): fixed sizes 1 and 2
-  // exist in MPFR alone, the only scalar whose systems run at those sizes; the run-time size in
-  // every scalar is checked against differences in tests/references/any_size_reference_test.cpp.
-  if constexpr (is_mpfr_v<T>) {
-    const auto fixed_map = make_odeint_map<T, n>("velocity_verlet", separable_form(fixed, x));
-    const auto sized_map = make_odeint_map<T, any_size>("velocity_verlet", separable_form(sized, y));
-    EXPECT_LE(distance(fixed_map->step(x, h).q, sized_map->step(y, h).q), tolerance);
-    EXPECT_LE(distance(fixed_map->jacobian(x, h), sized_map->jacobian(y, h)), tolerance);
-  }
+  const Vec x1 = x.q + h * x.w;
+  const Vec m = (x.q + x1) / 2, v = (x1 - x.q) / h;
+  const auto legendre = discrete_legendre(system, midpoint, x.q, x1, h);
+  EXPECT_LE(distance(legendre.p_begin, Vec(v - h / 2 * L_q(m))), tolerance);
+  EXPECT_LE(distance(legendre.p_end, Vec(v + h / 2 * L_q(m))), tolerance);
+  EXPECT_LE(distance(legendre.dp_begin_dq_b, Mat(-I / h - h / 4 * L_qq(m))), tolerance);
+  EXPECT_LE(distance(legendre.dp_begin_dq_e, Mat(I / h - h / 4 * L_qq(m))), tolerance);
+  EXPECT_LE(distance(legendre.dp_end_dq_e, Mat(I / h + h / 4 * L_qq(m))), tolerance);
+  const auto [x2, report] = del_step(system, matched_scheme(midpoint), x.q, x1, h);
+  ASSERT_TRUE(report.converged);
+  EXPECT_LE(distance(p_end(system, midpoint, x.q, x1, h), p_begin(system, midpoint, x1, x2, h)), T(1024) * epsilon<T>());
 }
 
-template <class T>
-class FixedAndRunTimeSizeTest : public testing::ScalarTest<T> {};
-using FixedSizeScalars = ::testing::Types<double, mpfr_real>;
-TYPED_TEST_SUITE(FixedAndRunTimeSizeTest, FixedSizeScalars, testing::ScalarNames);
-
-TYPED_TEST(FixedAndRunTimeSizeTest, OneAndTwoCoordinatesGiveTheFixedSizesNumbers) {
-  expect_same_numbers_at_fixed_and_run_time_size<TypeParam, 1>();
-  expect_same_numbers_at_fixed_and_run_time_size<TypeParam, 2>();
+TYPED_TEST(AnySizeTest, OneAndTwoCoordinatesGiveTheChainsClosedForms) {
+  expect_closed_form_numbers<TypeParam>(1);
+  expect_closed_form_numbers<TypeParam>(2);
 }
 
 // ∂f/∂x_i by central differences at width ε^(1/3)·max(1, |x_i|), in T: good to about ε^(2/3).

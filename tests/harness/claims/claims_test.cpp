@@ -244,52 +244,102 @@ TYPED_TEST(ClaimsTest, ExistenceUniquenessHasPositiveStepsAtEverySpeed) {
   EXPECT_EQ(this->verdict("existence-uniqueness", json).substr(0, 4), "fail");
 }
 
-// The pendulum with a closed form of its own (ClosedFormFlow, references/reference_flow.hpp),
-// drawn with k off by `offset`: 0 draws the right flow.
+// The pendulum's formula twin, as every case on the catalogue's pendulum runs it, with its
+// closed form chosen at run time (CaseReference) drawn with k off by `offset`: 0 draws the right
+// flow.
 template <class T>
-struct RedrawnPendulum : Pendulum<T> {
-  T offset = 0;
-};
+CaseReference<FormulaSystem<T, any_size>> redrawn_pendulum(const T& offset) {
+  using Reference = CaseReference<FormulaSystem<T, any_size>>;
+  const auto twin = make_formula_system<T, any_size>(catalogue_twin("pendulum", {{"k", "1"}}));
+  typename Reference::ClosedForm closed;
+  closed.advance = [offset](const State<T, any_size>& start, const T& t) {
+    Pendulum<T> drawn;
+    drawn.k = 1 + offset;
+    State<T, 1> x;
+    x.q[0] = start.q[0];
+    x.w[0] = start.w[0];
+    const State<T, 1> y = pendulum_flow(drawn, x, t);
+    State<T, any_size> end{zero_vector<T, any_size>(1), zero_vector<T, any_size>(1)};
+    end.q[0] = y.q[0];
+    end.w[0] = y.w[0];
+    return end;
+  };
+  closed.method = "closed form: the pendulum's, k off by the test's offset";
+  return Reference(twin, closed);
+}
 
-}  // namespace
+// A case's spec on the catalogue system `name` (its parameters at their defaults) in `scalar`.
+CaseSpec catalogue_case(const std::string& name, const std::string& scalar) {
+  nlohmann::json json = {{"name", "test"}, {"T", "1"}, {"scalar", scalar}, {"steps", {16, 32, 64, 128}},
+                         {"system", {{"name", name}}}, {"discretization", {{"kind", "midpoint"}}},
+                         {"claims", {"global-order"}}};
+  const bool planar = name == "kepler" || name == "henon_heiles" || name == "double_pendulum";
+  json["initial"] = planar ? nlohmann::json{{"q", {"1", "0"}}, {"w", {"0", "1.1"}}}
+                           : nlohmann::json{{"q", {"0.5"}}, {"w", {"0.75"}}};
+  return parse_case(json, "test.json");
+}
 
-template <class T>
-struct ClosedFormFlow<RedrawnPendulum<T>> {
-  static State<T, 1> advance(const RedrawnPendulum<T>& system, const State<T, 1>& start,
-                             const T& t) {
-    Pendulum<T> drawn = system;
-    drawn.k += system.offset;
-    return pendulum_flow(drawn, start, t);
+// The catalogue's closed forms are chosen at run time for its formula twins, in MPFR, and agree
+// with the closed forms called directly; every other system, and every system in the hardware
+// scalars, runs against the Taylor flow.
+TEST(CatalogueClosedForms, AreChosenAtRunTimeInMpfrForTheSystemsThatHaveOne) {
+  PrecisionGuard guard(40);
+  using T = mpfr_real;
+  using System = FormulaSystem<T, any_size>;
+  for (const std::string name : {"harmonic_oscillator", "pendulum", "kepler"})
+    EXPECT_TRUE(catalogue_closed_form<System>(catalogue_case(name, "mpfr"))) << name;
+  for (const std::string name : {"paper_example", "henon_heiles", "double_pendulum"})
+    EXPECT_FALSE(catalogue_closed_form<System>(catalogue_case(name, "mpfr"))) << name;
+  using InDouble = FormulaSystem<double, any_size>;
+  using InQuad = FormulaSystem<quad, any_size>;
+  EXPECT_FALSE(catalogue_closed_form<InDouble>(catalogue_case("pendulum", "double")));
+  EXPECT_FALSE(catalogue_closed_form<InQuad>(catalogue_case("kepler", "float128")));
+  CaseSpec formula = catalogue_case("pendulum", "mpfr");
+  formula.formula = std::make_shared<const FormulaSystemDefinition>(catalogue_twin("pendulum", formula.parameters));
+  EXPECT_FALSE(catalogue_closed_form<System>(formula)) << "a formula system has no closed form of vivv's";
+
+  const auto pendulum = catalogue_closed_form<System>(catalogue_case("pendulum", "mpfr"));
+  State<T, 1> start;
+  start.q[0] = from_decimal<T>("0.5");
+  start.w[0] = from_decimal<T>("0.75");
+  const State<T, 1> direct = pendulum_flow(Pendulum<T>{T(1)}, start, T(3));
+  const State<T, any_size> chosen = pendulum->advance({start.q, start.w}, T(3));
+  EXPECT_EQ(chosen.q[0], direct.q[0]);
+  EXPECT_EQ(chosen.w[0], direct.w[0]);
+  EXPECT_EQ(pendulum->method, ClosedFormFlow<Pendulum<T>>::method());
+  EXPECT_THROW(pendulum->advance({zero_vector<T, any_size>(2), zero_vector<T, any_size>(2)}, T(1)), std::logic_error);
+
+  State<T, 2> orbit;
+  orbit.q << 1, 0;
+  orbit.w << 0, from_decimal<T>("1.1");
+  const State<T, 2> kepler_direct = kepler_flow(Kepler<T>{T(1)}, orbit, T(5));
+  const State<T, any_size> kepler_chosen =
+      catalogue_closed_form<System>(catalogue_case("kepler", "mpfr"))->advance({orbit.q, orbit.w}, T(5));
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(kepler_chosen.q[i], kepler_direct.q[i]);
+    EXPECT_EQ(kepler_chosen.w[i], kepler_direct.w[i]);
   }
-  static std::string method() { return "closed form: the pendulum's, k off by the test's offset"; }
-};
-
-namespace {
+}
 
 // A reference whose own cross-check misses its promised tolerance keeps the claims' verdicts,
 // judged against floors raised to 1000 × its estimated error, and each claim records the
 // numbers; one whose estimate is not a finite number turns every claim into "error". The broken
-// reference: a closed form drawn with k off by a thousand
-// times what it and its check promise (about 2e-4 in double, 2e-22 in quad), still promising
-// its few ulps, and found out by the Taylor flow that checks every closed form; drawn right, the
-// same closed form passes the check.
+// reference: the pendulum's closed form, chosen at run time for its formula twin, drawn with k
+// off by a thousand times what it and its check promise (about 2e-4 in double, 2e-22 in quad),
+// still promising its few ulps, and found out by the Taylor flow that checks every closed form;
+// drawn right, the same closed form passes the check.
 TYPED_TEST(ClaimsTest, AReferenceThatMissesItsToleranceRaisesTheFloorsAndAnUnknownOneVoidsTheClaims) {
   using T = TypeParam;
-  State<T, 1> start;
+  State<T, any_size> start{zero_vector<T, any_size>(1), zero_vector<T, any_size>(1)};
   start.q[0] = from_decimal<T>("1.1");
   start.w[0] = from_decimal<T>("0.25");
   const T final_time = 2;
-  const T tolerance = from_decimal<T>("1e-30");
-  RedrawnPendulum<T> redrawn;
-  redrawn.k = 1;
-  static_assert(ReferenceFlow<RedrawnPendulum<T>>::closed_form);
-  const ReferenceCheck sound =
-      check_reference(ReferenceFlow<RedrawnPendulum<T>>(redrawn, tolerance), start, final_time);
+  const auto sound_reference = redrawn_pendulum<T>(T(0));
+  ASSERT_TRUE(sound_reference.closed_form());
+  const ReferenceCheck sound = check_reference(sound_reference, start, final_time);
   EXPECT_TRUE(sound.holds) << sound.error_estimate << " > " << sound.allowed;
-  const ReferenceFlow<Pendulum<T>> pendulum(Pendulum<T>{T(1)}, tolerance);
-  redrawn.offset = 1000 * (pendulum.tolerance() + pendulum.check_tolerance());
-  const ReferenceCheck broken =
-      check_reference(ReferenceFlow<RedrawnPendulum<T>>(redrawn, tolerance), start, final_time);
+  const T offset = 1000 * (sound_reference.tolerance() + sound_reference.check_tolerance());
+  const ReferenceCheck broken = check_reference(redrawn_pendulum<T>(offset), start, final_time);
   ASSERT_FALSE(broken.holds) << broken.error_estimate << " <= " << broken.allowed;
   std::vector<ClaimResult> claims(2);
   claims[0].verdict = "pass";
