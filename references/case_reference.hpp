@@ -3,7 +3,7 @@
 //
 // The closed form is chosen at run time: the catalogue's harmonic oscillator, pendulum and Kepler
 // problem run every claim through their formula twins, sized at run time like any formula system,
-// and only their reference is their own (harness/context/case_context.hpp, catalogue_closed_form).
+// and only their reference is their own (harness/context/reference_choice.hpp, catalogue_closed_form).
 // No system type is compiled for it.
 //
 // Accuracy claimed, as for every reference: |y_i − F_t(start)_i| ≤ tolerance() (1 + |F_t(start)_i|);
@@ -30,9 +30,10 @@ namespace vivv {
 template <TapeRecordable System>
 class CaseReference {
  public:
-  using T = typename System::Scalar;
-  static constexpr int N = System::dimension;
-  using Answer = typename TaylorReference<System>::Answer;
+  using Taylor = TaylorReference<System>;
+  using T = typename Taylor::T;
+  static constexpr int N = Taylor::N;
+  using Answer = typename Taylor::Answer;
 
   // A closed form: F_t(start) and what it is, for the report.
   struct ClosedForm {
@@ -41,7 +42,7 @@ class CaseReference {
   };
 
   // The Taylor flow at `tolerance` (raised to its floor, TaylorReference).
-  CaseReference(System system, T tolerance) : system_(system), taylor_(TaylorReference<System>(std::move(system), tolerance)) {}
+  CaseReference(System system, T tolerance) : system_(system), taylor_(Taylor(std::move(system), tolerance)) {}
 
   // The closed form `closed`, accurate to closed_form_tolerance.
   CaseReference(System system, ClosedForm closed)
@@ -116,7 +117,7 @@ class CaseReference {
 
  private:
   System system_;
-  std::optional<TaylorReference<System>> taylor_;
+  std::optional<Taylor> taylor_;
   std::shared_ptr<const ClosedForm> closed_;
   // The closed form's check progress, shared by copies (set_progress is const, as TaylorReference's).
   std::shared_ptr<std::function<void(const T&, const T&)>> check_progress_;

@@ -35,19 +35,21 @@ run_capped() {
   (ulimit -v $cap_kib; exec "$vivv" run "$work/$1.json" --out "$work/$2" --quiet) > "$work/$2.log" 2>&1 || code=$?
   cat "$work/$2.log"
 }
+# The run into $work/$1 refused as bad input ($2 names it): exit 2, no std::bad_alloc, no report.
+expect_refused() {
+  [ "$code" -eq 2 ] || { echo "expected exit 2 for $2, got $code"; exit 1; }
+  if grep -q "bad_alloc" "$work/$1.log"; then echo "std::bad_alloc instead of the estimate"; exit 1; fi
+  [ ! -e "$work/$1/report.json" ] || { echo "a report was written for a refused case"; exit 1; }
+}
 run_capped pairs-beyond-the-cap beyond
-[ "$code" -eq 2 ] || { echo "expected exit 2 for the case beyond the cap, got $code"; exit 1; }
+expect_refused beyond "the case beyond the cap"
 grep -q "field 'system.lagrangian': reading this system needs more than the [0-9.]* GiB this process may take (what its address-space limit, RLIMIT_AS or ulimit -v, leaves)" "$work/beyond.log" ||
   { echo "the refusal does not name the estimate and the address-space limit"; exit 1; }
-if grep -q "bad_alloc" "$work/beyond.log"; then echo "std::bad_alloc instead of the estimate"; exit 1; fi
-[ ! -e "$work/beyond/report.json" ] || { echo "a report was written for a refused case"; exit 1; }
 run_capped reference-beyond-the-cap reference
-[ "$code" -eq 2 ] || { echo "expected exit 2 for the reference beyond the cap, got $code"; exit 1; }
+expect_refused reference "the reference beyond the cap"
 grep -q "field 'system.coordinates': a system of 900 coordinates whose L takes [0-9]* operations needs about [0-9.]* GiB in mpfr, [0-9.]* GiB of it for reference flow (3 arrays x [0-9]* acceleration nodes x" "$work/reference.log" &&
   grep -q "or a scalar of fewer digits is what would fit" "$work/reference.log" ||
   { echo "the refusal does not name the reference flow's part and what would fit"; exit 1; }
-if grep -q "bad_alloc" "$work/reference.log"; then echo "std::bad_alloc instead of the estimate"; exit 1; fi
-[ ! -e "$work/reference/report.json" ] || { echo "a report was written for a refused case"; exit 1; }
 run_capped pairs-within-the-cap within
 [ "$code" -eq 0 ] || { echo "expected exit 0 for the case within the cap, got $code"; exit 1; }
 grep -q '"verdict": "pass"' "$work/within/report.json" || { echo "global-order did not pass within the cap"; exit 1; }
@@ -66,9 +68,8 @@ case = {"name": "jacobians-beyond-the-cap", "system": {"name": "chain", "lagrang
 json.dump(case, open(f"{work}/jacobians-beyond-the-cap.json", "w"))
 EOF2
 run_capped jacobians-beyond-the-cap jacobians
-[ "$code" -eq 2 ] || { echo "expected exit 2 for the Jacobians beyond the cap, got $code"; exit 1; }
+expect_refused jacobians "the Jacobians beyond the cap"
 grep -q "for symplecticity's Jacobians (a dense 2n x 2n matrix for each of the 400000 steps of the longest run)" "$work/jacobians.log" &&
   grep -q "without symplecticity the case needs about [0-9.e-]* [KMG]iB, and with it step counts up to [0-9]* fit" "$work/jacobians.log" ||
   { echo "the refusal does not name the claim and what would fit"; exit 1; }
-[ ! -e "$work/jacobians/report.json" ] || { echo "a report was written for a refused case"; exit 1; }
 echo "refused beyond the cap with its estimate (while read, and for the reference flow), completed within it; symplecticity's Jacobians named with what fits"

@@ -47,6 +47,13 @@ class ScalarTest : public ::testing::Test {
   std::unique_ptr<PrecisionGuard> guard_;
 };
 
+// A typed test suite `Name` over `ScalarList` (Scalars or AllScalars): the ScalarTest fixture,
+// readable names.
+#define VIVV_SCALAR_TEST_SUITE(Name, ScalarList)          \
+  template <class T>                                      \
+  class Name : public ::vivv::testing::ScalarTest<T> {};  \
+  TYPED_TEST_SUITE(Name, ::vivv::testing::ScalarList, ::vivv::testing::ScalarNames)
+
 // The tolerance the harness asks of a reference at T's precision:
 // 10^−(digits − 10), ten guard digits.
 template <class T>

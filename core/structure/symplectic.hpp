@@ -70,6 +70,20 @@ T symplecticity_defect(const Matrix<T, m, m>& jacobian) {
 // and powers of two scale without rounding. With e_i ≈ log2 √M_ii (M the mass matrix) a body of
 // mass m has ∂q̃/∂p̃ ≈ h instead of h/m: the outer solar system's Pluto (m = 7.7·10⁻⁹ of the Sun)
 // gave entries of 2.6·10⁹ whose rounding, ε·|J|², swamped |Ω| = 1 in double.
+// S v (sign 1) or S⁻¹ v (sign −1) for a vector v on (q, p), with S = diag(2^e, 2^−e) as above: what
+// the probes apply J̃ = S J S⁻¹ through, without forming J. No exponents: v itself.
+template <class T, int m>
+Vector<T, m> balanced_vector(Vector<T, m> v, const std::vector<int>& exponents, int sign) {
+  using std::ldexp;
+  if (exponents.empty()) return v;
+  const int n = static_cast<int>(v.size()) / 2;
+  for (int i = 0; i < n; ++i) {
+    v[i] = ldexp(T(v[i]), sign * exponents[i]);
+    v[n + i] = ldexp(T(v[n + i]), -sign * exponents[i]);
+  }
+  return v;
+}
+
 template <class T, int m>
 Matrix<T, m, m> balanced(const Matrix<T, m, m>& jacobian, const std::vector<int>& exponents) {
   using std::ldexp;

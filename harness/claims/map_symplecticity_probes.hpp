@@ -61,15 +61,7 @@ void measure_map_by_probes(const CaseContext<System>& context, const std::vector
   const int n = context.n;
   const OneStepMap<T, any_size>& map = *context.map;
   // J̃ = S J S⁻¹ with S = diag(2^e, 2^−e) (balanced, core/structure/symplectic.hpp).
-  auto rescale = [&](V v, int sign) {
-    if (exponents.empty()) return v;
-    using std::ldexp;
-    for (int i = 0; i < n; ++i) {
-      v[i] = ldexp(T(v[i]), sign * exponents[i]);
-      v[n + i] = ldexp(T(v[n + i]), -sign * exponents[i]);
-    }
-    return v;
-  };
+  auto rescale = [&](const V& v, int sign) { return balanced_vector<T, any_size>(v, exponents, sign); };
   // J̃ applied to balanced vectors, through the map's products.
   auto apply = [&](const State<T, any_size>& at, const T& h, const std::vector<V>& balanced) {
     std::vector<V> plain;

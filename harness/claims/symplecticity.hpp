@@ -404,15 +404,7 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
     using Blocks = SparseLegendreBlocks<T>;
     const int n = context.n;
     // J̃ = S J S⁻¹ with S = diag(2^e, 2^−e) (balanced, core/structure/symplectic.hpp).
-    auto rescale = [&](V v, int sign) {
-      if (exponents.empty()) return v;
-      using std::ldexp;
-      for (int i = 0; i < n; ++i) {
-        v[i] = ldexp(T(v[i]), sign * exponents[i]);
-        v[n + i] = ldexp(T(v[n + i]), -sign * exponents[i]);
-      }
-      return v;
-    };
+    auto rescale = [&](const V& v, int sign) { return balanced_vector<T, any_size>(v, exponents, sign); };
     std::size_t index = 0;
     visit_trajectories(context, "symplecticity: generating form and probes", [&](const T& h, const auto& q) {
       using std::max;

@@ -60,7 +60,7 @@ namespace {
 
 // `spec` run in scalar T: every system at the run-time size, a catalogue system through its formula
 // twin (its closed-form flow, where it has one, chosen at run time as its reference in MPFR:
-// harness/context/case_context.hpp, catalogue_closed_form).
+// harness/context/reference_choice.hpp, catalogue_closed_form).
 template <class T>
 void run_in_scalar(CaseSpec& spec, CaseResult& result, bool refine,
                    const std::function<void(const std::string&)>& progress) {

@@ -22,9 +22,7 @@
 namespace vivv {
 namespace {
 
-template <class T>
-class AnySizeReferenceTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(AnySizeReferenceTest, testing::AllScalars, testing::ScalarNames);
+VIVV_SCALAR_TEST_SUITE(AnySizeReferenceTest, AllScalars);
 
 using testing::chain;
 using testing::chain_state;

@@ -12,9 +12,7 @@
 namespace vivv {
 namespace {
 
-template <class T>
-class ClosedFormsTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(ClosedFormsTest, testing::Scalars, testing::ScalarNames);
+VIVV_SCALAR_TEST_SUITE(ClosedFormsTest, Scalars);
 
 template <class T>
 State<T, 1> state(const std::string& q, const std::string& w) {

@@ -12,9 +12,7 @@
 namespace vivv {
 namespace {
 
-template <class T>
-class ExtrapolationFlowTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(ExtrapolationFlowTest, testing::Scalars, testing::ScalarNames);
+VIVV_SCALAR_TEST_SUITE(ExtrapolationFlowTest, Scalars);
 
 // Canonical angular momentum J = q1 p2 − q2 p1, p = dL/dw: conserved by rotation symmetry.
 template <class System>

@@ -9,9 +9,7 @@
 namespace vivv {
 namespace {
 
-template <class T>
-class ReferenceFlowTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(ReferenceFlowTest, testing::Scalars, testing::ScalarNames);
+VIVV_SCALAR_TEST_SUITE(ReferenceFlowTest, Scalars);
 
 // A system the facade does not recognize: the harmonic oscillator behind a
 // wrapper, as the harness's wrappers (twin terms, shifted forces) look to it.

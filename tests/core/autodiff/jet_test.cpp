@@ -20,9 +20,7 @@
 namespace vivv {
 namespace {
 
-template <class T>
-class JetTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(JetTest, testing::Scalars, testing::ScalarNames);
+VIVV_SCALAR_TEST_SUITE(JetTest, Scalars);
 
 template <class T, int n>
 std::pair<Vector<T, n>, Vector<T, n>> state() {

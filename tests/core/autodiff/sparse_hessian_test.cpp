@@ -23,9 +23,7 @@
 namespace vivv {
 namespace {
 
-template <class T>
-class SparseHessianTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(SparseHessianTest, testing::AllScalars, testing::ScalarNames);
+VIVV_SCALAR_TEST_SUITE(SparseHessianTest, AllScalars);
 
 // A chain of n coordinates whose L uses every operation the tape has.
 FormulaSystemDefinition every_operation_chain(int n) {

@@ -21,9 +21,7 @@
 namespace vivv {
 namespace {
 
-template <class T>
-class TapeRecurrenceTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(TapeRecurrenceTest, testing::Scalars, testing::ScalarNames);
+VIVV_SCALAR_TEST_SUITE(TapeRecurrenceTest, Scalars);
 
 // One operation: how to record it on x1 and the k-th Taylor coefficient of op(a + b t).
 template <class T>

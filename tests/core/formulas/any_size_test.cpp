@@ -23,9 +23,7 @@
 namespace vivv {
 namespace {
 
-template <class T>
-class AnySizeTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(AnySizeTest, testing::AllScalars, testing::ScalarNames);
+VIVV_SCALAR_TEST_SUITE(AnySizeTest, AllScalars);
 
 using testing::chain;
 using testing::chain_state;

@@ -23,9 +23,7 @@
 namespace vivv {
 namespace {
 
-template <class T>
-class FormulaSystemTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(FormulaSystemTest, testing::Scalars, testing::ScalarNames);
+VIVV_SCALAR_TEST_SUITE(FormulaSystemTest, Scalars);
 
 FormulaSystemDefinition definition(const std::string& text, std::vector<std::string> coordinates,
                                    std::vector<std::string> velocities,

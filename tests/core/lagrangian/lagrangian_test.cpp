@@ -6,9 +6,7 @@
 namespace vivv {
 namespace {
 
-template <class T>
-class LagrangianTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(LagrangianTest, testing::Scalars, testing::ScalarNames);
+VIVV_SCALAR_TEST_SUITE(LagrangianTest, Scalars);
 
 // Automatic differentiation of the paper's L = ½ g(q) w² − V(q) against its
 // hand-written derivatives, at random points.

@@ -3,11 +3,13 @@
 // computed by jets through the stepper is its derivative, the symplectic steppers have
 // JᵀΩJ = Ω to working precision and the classical Runge–Kutta method does not (the negative
 // control), the check symplecticity runs tells a stepper's Jacobian from that of a step of h/2,
-// and a Lagrangian that is not ½ wᵀMw − V(q) is refused.
-// The definitions, not only the declaration: the library instantiates odeint's maps of 2
-// coordinates in MPFR alone (harness/CMakeLists.txt), and this test runs them in double and float128.
-#include "core/maps/odeint_map_impl.hpp"
+// and a Lagrangian that is not ½ wᵀMw − V(q) is refused. The systems are formulas sized at run
+// time, as vivv runs every system: the maps are the library's own instantiations
+// (harness/CMakeLists.txt), one per scalar.
+#include "core/maps/odeint_map.hpp"
 
+#include "cases/formula_parser.hpp"
+#include "core/formulas/formula_system.hpp"
 #include "core/qxq/del_evolution.hpp"
 #include "core/structure/symplectic.hpp"
 #include "tests/test_scalars.hpp"
@@ -15,41 +17,41 @@
 namespace vivv {
 namespace {
 
+// L written as a formula in q1, q2, w1, w2, sized at run time in T.
+template <class T>
+FormulaSystem<T, any_size> plane_system(const std::string& text) {
+  return make_formula_system<T, any_size>({"test", text, parse_formula(text), {"q1", "q2"}, {"w1", "w2"}, {}, {}, nullptr});
+}
+
 // A separable system with a non-diagonal mass: L = ½ wᵀMw − V(q), M = [[2, 1/2], [1/2, 1]],
 // V = (x² + y²)/2 + x²y − y³/3 (Hénon–Heiles).
 template <class T>
-struct MassiveHenonHeiles {
-  using Scalar = T;
-  static constexpr int dimension = 2;
-  static constexpr const char* name = "massive_henon_heiles";
-  template <class S>
-  S lagrangian(const Point<S, 2>& q, const Point<S, 2>& w) const {
-    const S kinetic = (2 * w[0] * w[0] + w[0] * w[1] + w[1] * w[1]) / 2;
-    return kinetic - (q[0] * q[0] + q[1] * q[1]) / 2 - q[0] * q[0] * q[1] + q[1] * q[1] * q[1] / 3;
-  }
-};
+FormulaSystem<T, any_size> massive_henon_heiles() {
+  return plane_system<T>("(2*w1^2 + w1*w2 + w2^2)/2 - (q1^2 + q2^2)/2 - q1^2*q2 + q2^3/3");
+}
 
 // Not separable: a magnetic term couples q and w.
 template <class T>
-struct MagneticPlane {
-  using Scalar = T;
-  static constexpr int dimension = 2;
-  static constexpr const char* name = "magnetic_plane";
-  template <class S>
-  S lagrangian(const Point<S, 2>& q, const Point<S, 2>& w) const {
-    return (w[0] * w[0] + w[1] * w[1]) / 2 + (q[0] * w[1] - q[1] * w[0]) / 2 - (q[0] * q[0] + q[1] * q[1]) / 2;
-  }
-};
+FormulaSystem<T, any_size> magnetic_plane() {
+  return plane_system<T>("(w1^2 + w2^2)/2 + (q1*w2 - q2*w1)/2 - (q1^2 + q2^2)/2");
+}
+
+// (q1, q2, w1, w2) as a state of two coordinates.
+template <class T>
+State<T, any_size> plane_state(const T& q1, const T& q2, const T& w1, const T& w2) {
+  State<T, any_size> x{Vector<T, any_size>(2), Vector<T, any_size>(2)};
+  x.q << q1, q2;
+  x.w << w1, w2;
+  return x;
+}
 
 // One step of `map` on (q, p): (q, p) ↦ (q', p') with w = M⁻¹p, p' = M w'.
 template <class T, class Map>
-Vector<T, 4> step_on_phase(const Map& map, const SeparableSystem<T, 2>& separable, const T& h,
-                           const Vector<T, 4>& y) {
-  State<T, 2> s;
-  s.q = y.template head<2>();
-  s.w = separable.inverse_mass * y.template tail<2>();
-  const State<T, 2> next = map->step(s, h);
-  Vector<T, 4> out;
+Vector<T, any_size> step_on_phase(const Map& map, const SeparableSystem<T, any_size>& separable, const T& h,
+                                  const Vector<T, any_size>& y) {
+  State<T, any_size> s{y.head(2), separable.inverse_mass * y.tail(2)};
+  const State<T, any_size> next = map->step(s, h);
+  Vector<T, any_size> out(4);
   out << next.q, separable.mass * next.w;
   return out;
 }
@@ -57,15 +59,15 @@ Vector<T, 4> step_on_phase(const Map& map, const SeparableSystem<T, 2>& separabl
 template <class T>
 class OdeintMapTest : public testing::ScalarTest<T> {
  protected:
-  MassiveHenonHeiles<T> system;
-  State<T, 2> initial;
+  FormulaSystem<T, any_size> system;
+  State<T, any_size> initial;
   void SetUp() override {
     testing::ScalarTest<T>::SetUp();
-    initial.q << T(1) / 10, T(1) / 5;
-    initial.w << T(3) / 10, -T(1) / 10;
+    system = massive_henon_heiles<T>();
+    initial = plane_state<T>(T(1) / 10, T(1) / 5, T(3) / 10, -T(1) / 10);
   }
-  std::shared_ptr<const OneStepMap<T, 2>> stepper(const std::string& name) const {
-    return make_odeint_map<T, 2>(name, separable_form(system, initial));
+  std::shared_ptr<const OneStepMap<T, any_size>> stepper(const std::string& name) const {
+    return make_odeint_map<T, any_size>(name, separable_form(system, initial));
   }
 };
 TYPED_TEST_SUITE(OdeintMapTest, testing::Scalars, testing::ScalarNames);
@@ -79,16 +81,16 @@ TYPED_TEST(OdeintMapTest, VelocityVerletIsTheTrapezoidVariationalIntegrator) {
   DelScheme<T> trapezoid;
   trapezoid.future.rule = QxQRule::trapezoid;
   trapezoid.past = trapezoid.future;
-  const Vector<T, 2> q1 = start_from_momentum(this->system, trapezoid.future, this->initial.q, this->initial.w, h);
+  const Vector<T, any_size> q1 = start_from_momentum(this->system, trapezoid.future, this->initial.q, this->initial.w, h);
   const auto del = del_trajectory(this->system, trapezoid, this->initial.q, q1, h, N);
   const auto verlet = this->stepper("velocity_verlet");
-  const Matrix<T, 2, 2> mass = separable_form(this->system, this->initial).mass;
-  State<T, 2> x = this->initial;
+  const Matrix<T, any_size, any_size> mass = separable_form(this->system, this->initial).mass;
+  State<T, any_size> x = this->initial;
   const T tolerance = T(N) * this->working_tolerance();
   for (int k = 0; k < N; ++k) {
-    const Vector<T, 2> p = discrete_legendre(this->system, trapezoid.future, del.q[k], del.q[k + 1], h).p_begin;
-    EXPECT_LE((max_norm<T, 2>(del.q[k] - x.q)), tolerance) << "q at step " << k;
-    EXPECT_LE((max_norm<T, 2>(p - Vector<T, 2>(mass * x.w))), tolerance) << "p at step " << k;
+    const Vector<T, any_size> p = discrete_legendre(this->system, trapezoid.future, del.q[k], del.q[k + 1], h).p_begin;
+    EXPECT_LE((max_norm<T, any_size>(Vector<T, any_size>(del.q[k] - x.q))), tolerance) << "q at step " << k;
+    EXPECT_LE((max_norm<T, any_size>(Vector<T, any_size>(p - mass * x.w))), tolerance) << "p at step " << k;
     x = verlet->step(x, h);
   }
 }
@@ -98,7 +100,7 @@ TYPED_TEST(OdeintMapTest, SymplecticStepsAndTheRungeKuttaControl) {
   using T = TypeParam;
   const T h = T(1) / 4;
   for (const auto& info : odeint_steppers()) {
-    const T defect = symplecticity_defect<T, 4>(this->stepper(info.name)->jacobian(this->initial, h));
+    const T defect = symplecticity_defect<T, any_size>(this->stepper(info.name)->jacobian(this->initial, h));
     if (info.symplectic)
       EXPECT_LE(defect, this->working_tolerance()) << info.name;
     else
@@ -111,25 +113,23 @@ TYPED_TEST(OdeintMapTest, SymplecticStepsAndTheRungeKuttaControl) {
 TEST(OdeintMapJacobian, IsTheDerivativeOfTheStep) {
   PrecisionGuard guard(60);
   using T = mpfr_real;
-  MassiveHenonHeiles<T> system;
-  State<T, 2> x;
-  x.q << T(1) / 10, T(1) / 5;
-  x.w << T(3) / 10, -T(1) / 10;
+  const auto system = massive_henon_heiles<T>();
+  const State<T, any_size> x = plane_state<T>(T(1) / 10, T(1) / 5, T(3) / 10, -T(1) / 10);
   const auto separable = separable_form(system, x);
   const T h = T(1) / 4, delta = testing::ten_to_minus<T>(20);
-  auto on_phase = [&](const auto& map, const Vector<T, 4>& y) {
+  auto on_phase = [&](const auto& map, const Vector<T, any_size>& y) {
     return step_on_phase(map, separable, h, y);
   };
-  Vector<T, 4> y;
+  Vector<T, any_size> y(4);
   y << x.q, separable.mass * x.w;
   for (const auto& info : odeint_steppers()) {
-    const auto map = make_odeint_map<T, 2>(info.name, separable);
-    const Matrix<T, 4, 4> jacobian = map->jacobian(x, h);
+    const auto map = make_odeint_map<T, any_size>(info.name, separable);
+    const Matrix<T, any_size, any_size> jacobian = map->jacobian(x, h);
     for (int j = 0; j < 4; ++j) {
-      Vector<T, 4> plus = y, minus = y;
+      Vector<T, any_size> plus = y, minus = y;
       plus[j] += delta, minus[j] -= delta;
-      const Vector<T, 4> column = (on_phase(map, plus) - on_phase(map, minus)) / (2 * delta);
-      EXPECT_LE((max_norm<T, 4>(Vector<T, 4>(column - jacobian.col(j)))), testing::ten_to_minus<T>(30))
+      const Vector<T, any_size> column = (on_phase(map, plus) - on_phase(map, minus)) / (2 * delta);
+      EXPECT_LE((max_norm<T, any_size>(Vector<T, any_size>(column - jacobian.col(j)))), testing::ten_to_minus<T>(30))
           << info.name << ", column " << j;
     }
   }
@@ -143,11 +143,11 @@ TYPED_TEST(OdeintMapTest, TheJacobianCheckTellsTheStepItBelongsTo) {
   using T = TypeParam;
   const T h = T(1) / 4;
   const auto separable = separable_form(this->system, this->initial);
-  Vector<T, 4> y;
+  Vector<T, any_size> y(4);
   y << this->initial.q, separable.mass * this->initial.w;
-  auto check = [&](const auto& map, const Matrix<T, 4, 4>& jacobian) {
-    auto on_phase = [&](const Vector<T, 4>& x) { return step_on_phase(map, separable, h, x); };
-    return compare_with_differences<T, 4>(on_phase, y, jacobian, Vector<T, 4>(y.cwiseAbs()));
+  auto check = [&](const auto& map, const Matrix<T, any_size, any_size>& jacobian) {
+    auto on_phase = [&](const Vector<T, any_size>& x) { return step_on_phase(map, separable, h, x); };
+    return compare_with_differences<T, any_size>(on_phase, y, jacobian, Vector<T, any_size>(y.cwiseAbs()));
   };
   for (const auto& info : odeint_steppers()) {
     const auto map = this->stepper(info.name);
@@ -164,14 +164,12 @@ TYPED_TEST(OdeintMapTest, TheJacobianCheckTellsTheStepItBelongsTo) {
 // A magnetic term makes d2L/dw dq nonzero: refused, naming the entry by its components (±B/2 at
 // (1, 2) and (2, 1)); the separable system passes.
 TEST(OdeintMapSeparability, RefusesACoupledLagrangian) {
-  State<double, 2> x;
-  x.q << 0.5, 0.25;
-  x.w << 0.125, -0.5;
-  const auto defect = separability_defect(MagneticPlane<double>{}, std::vector<State<double, 2>>{x});
+  const State<double, any_size> x = plane_state<double>(0.5, 0.25, 0.125, -0.5);
+  const auto defect = separability_defect(magnetic_plane<double>(), std::vector<State<double, any_size>>{x});
   ASSERT_TRUE(defect.has_value());
   EXPECT_TRUE(defect->quantity == "d2L/dw_1 dq_2" || defect->quantity == "d2L/dw_2 dq_1")
       << defect->quantity;
-  EXPECT_FALSE(separability_defect(MassiveHenonHeiles<double>{}, std::vector<State<double, 2>>{x, x}).has_value());
+  EXPECT_FALSE(separability_defect(massive_henon_heiles<double>(), std::vector<State<double, any_size>>{x, x}).has_value());
 }
 
 }  // namespace

@@ -10,9 +10,7 @@
 namespace vivv {
 namespace {
 
-template <class T>
-class NewtonTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(NewtonTest, testing::Scalars, testing::ScalarNames);
+VIVV_SCALAR_TEST_SUITE(NewtonTest, Scalars);
 
 // arctan x = 0: Newton converges from |x0| below about 1.39 and runs away from above it
 // (each iterate larger in size than the one before, alternating in sign).

@@ -8,9 +8,7 @@
 namespace vivv {
 namespace {
 
-template <class T>
-class GaussLegendreTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(GaussLegendreTest, testing::Scalars, testing::ScalarNames);
+VIVV_SCALAR_TEST_SUITE(GaussLegendreTest, Scalars);
 
 // m!
 using testing::factorial;

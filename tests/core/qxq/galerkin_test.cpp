@@ -19,9 +19,7 @@
 namespace vivv {
 namespace {
 
-template <class T>
-class GalerkinTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(GalerkinTest, testing::Scalars, testing::ScalarNames);
+VIVV_SCALAR_TEST_SUITE(GalerkinTest, Scalars);
 
 template <class T, int n>
 T largest_difference(const DiscreteLegendre<T, n>& a, const DiscreteLegendre<T, n>& b) {

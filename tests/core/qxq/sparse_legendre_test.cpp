@@ -33,9 +33,7 @@
 namespace vivv {
 namespace {
 
-template <class T>
-class SparseLegendreTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(SparseLegendreTest, testing::AllScalars, testing::ScalarNames);
+VIVV_SCALAR_TEST_SUITE(SparseLegendreTest, AllScalars);
 
 // L = Σ w_i²/2·(1 + q_i²/4) + Σ (q_i w_{i+1} − q_{i+1} w_i)/2 − Σ (q_{i+1} − q_i)²/2 − Σ cos q_i.
 FormulaSystemDefinition gyroscopic_chain(int n) {

@@ -18,9 +18,7 @@
 namespace vivv {
 namespace {
 
-template <class T>
-class ModifiedEnergyTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(ModifiedEnergyTest, testing::Scalars, testing::ScalarNames);
+VIVV_SCALAR_TEST_SUITE(ModifiedEnergyTest, Scalars);
 
 template <class T>
 QxQDiscretization<T> plain_rule(QxQRule r) {

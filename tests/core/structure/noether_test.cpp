@@ -15,9 +15,7 @@
 namespace vivv {
 namespace {
 
-template <class T>
-class NoetherTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(NoetherTest, testing::Scalars, testing::ScalarNames);
+VIVV_SCALAR_TEST_SUITE(NoetherTest, Scalars);
 
 // Kepler with a term ε q1² in its potential that rotations do not leave alone, declaring
 // the rotation anyway.

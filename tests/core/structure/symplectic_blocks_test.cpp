@@ -20,9 +20,7 @@
 namespace vivv {
 namespace {
 
-template <class T>
-class SymplecticBlocksTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(SymplecticBlocksTest, testing::AllScalars, testing::ScalarNames);
+VIVV_SCALAR_TEST_SUITE(SymplecticBlocksTest, AllScalars);
 
 const std::vector<int> sizes = {1, 2, 7, 64};
 

@@ -38,9 +38,7 @@ Matrix<T, any_size, any_size> symplectic_matrix(int n, GaussianProbes& draw) {
   return upper * lower;
 }
 
-template <class T>
-class SymplecticProbesTest : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(SymplecticProbesTest, testing::Scalars, testing::ScalarNames);
+VIVV_SCALAR_TEST_SUITE(SymplecticProbesTest, Scalars);
 
 // The probe's value is ξᵀDη formed densely; a symplectic J gives rounding (measured in units of
 // ε‖ξ‖‖η‖|J|², at most a few), one entry of J off by 10⁻⁶ gives at least 10⁻⁸ of ‖ξ‖‖η‖ in one

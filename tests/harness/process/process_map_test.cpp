@@ -25,9 +25,7 @@
 namespace vivv {
 namespace {
 
-template <class T>
-class ProcessMapAnySize : public testing::ScalarTest<T> {};
-TYPED_TEST_SUITE(ProcessMapAnySize, testing::AllScalars, testing::ScalarNames);
+VIVV_SCALAR_TEST_SUITE(ProcessMapAnySize, AllScalars);
 
 using testing::distance;
 

@@ -14,10 +14,7 @@
 namespace vivv {
 namespace {
 
-template <class T>
-class FiniteMeasurementTest : public testing::ScalarTest<T> {};
-using FiniteScalars = ::testing::Types<double, long double, quad, mpfr_real>;
-TYPED_TEST_SUITE(FiniteMeasurementTest, FiniteScalars, testing::ScalarNames);
+VIVV_SCALAR_TEST_SUITE(FiniteMeasurementTest, AllScalars);
 
 TYPED_TEST(FiniteMeasurementTest, NanMaxAndNanMinKeepANaNInEitherPlace) {
   using T = TypeParam;
