@@ -84,12 +84,7 @@ class CaseReference {
 
   // How tolerance() is backed up.
   std::string cross_check() const {
-    if (!closed_) return taylor_->cross_check();
-    return "closed form in " + scalar_name<T>() + " (" + std::to_string(precision_bits<T>()) +
-           " bits), accurate to a few ulps times the conditioning of the flow; unit tests compare it with "
-           "the same formula at 100 digits and with Gragg–Bulirsch–Stoer extrapolation; estimate_error(v, t) "
-           "is its max-norm distance to the Taylor-series flow (Jorba–Zou steps) at local tolerance " +
-           three_digits(check_floor()) + " (1000 ulps)";
+    return closed_ ? closed_form_cross_check<T>() : taylor_->cross_check();
   }
 
   // `report(reached, target)` after every step of the Taylor flow, `check_report` after every step
@@ -112,8 +107,7 @@ class CaseReference {
     return closed_ ? std::pair<std::vector<Answer>, std::vector<Answer>>{} : taylor_->answers();
   }
 
-  // The closed form's check: 1000 ε (100 ε is reachable, but slowly).
-  static T check_floor() { return 1000 * epsilon<T>(); }
+  static T check_floor() { return closed_form_check_floor<T>(); }
 
  private:
   System system_;

@@ -9,7 +9,6 @@
 #include <map>
 #include <initializer_list>
 #include <mutex>
-#include <optional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -29,7 +28,6 @@
 #include "harness/process/process_map.hpp"
 #include "harness/context/reference_cache.hpp"
 #include "harness/context/shared_references.hpp"
-#include "cases/catalogue.hpp"
 #include "harness/context/reference_choice.hpp"
 
 namespace vivv {
