@@ -28,8 +28,107 @@
 
 namespace vivv {
 
+// The arithmetic both jets share (the fixed one below and the run-time one after it), written
+// once so that both compute the same numbers operation for operation: the chain rule, the
+// product's derivatives and the scaling by a constant. Derived has value, gradient, hessian,
+// second(i, j), for_each_second(f) (each Hessian entry it computes, mirrored where symmetric)
+// and is_constant() (no derivatives: a run-time jet before its first variable).
+//
+// φ(u) from φ(u0), φ'(u0), φ''(u0): the chain rule above, in place (`apply_chain`) or on a
+// copy. The arithmetic works in place through one scratch number and fills the symmetric
+// Hessian's upper triangle, mirroring it: for MPFR every temporary is an allocation, and these
+// loops are most of a DEL step's cost. (The elementary functions below take their argument by
+// value for the same reason: a caller that moves a jet in gets it back transformed, with no
+// allocation.)
+template <class Derived, class T, int Order>
+struct JetArithmetic {
+  Derived& apply_chain(const T& f0, const T& f1, const T& f2) {
+    Derived& u = self();
+    if (!u.is_constant()) {
+      if constexpr (Order == 2) {
+        T scratch;
+        u.for_each_second([&](T& h, int i, int j) {
+          h *= f1;
+          scratch = u.gradient[i];
+          scratch *= u.gradient[j];
+          scratch *= f2;
+          h += scratch;
+        });
+      } else {
+        (void)f2;
+      }
+      for (auto& g : u.gradient) g *= f1;
+    }
+    u.value = f0;
+    return u;
+  }
+  Derived chain(const T& f0, const T& f1, const T& f2) const {
+    Derived r = self();
+    r.apply_chain(f0, f1, f2);
+    return r;
+  }
+
+  // a / b = a · (1/b), with (1/u)' = −1/u², (1/u)'' = 2/u³.
+  Derived& operator/=(const Derived& b) {
+    T inverse = 1 / b.value;
+    return self() *= b.chain(inverse, -inverse * inverse, 2 * inverse * inverse * inverse);
+  }
+  Derived& operator*=(const T& c) {
+    Derived& u = self();
+    u.value *= c;
+    for (auto& g : u.gradient) g *= c;
+    for (auto& h : u.hessian) h *= c;
+    return u;
+  }
+  Derived& operator/=(const T& c) {
+    Derived& u = self();
+    u.value /= c;
+    for (auto& g : u.gradient) g /= c;
+    for (auto& h : u.hessian) h /= c;
+    return u;
+  }
+  Derived operator-() const {
+    Derived r = self();
+    r *= T(-1);
+    return r;
+  }
+
+ protected:
+  // (ab)'' = a b'' + b a'' + a' b'ᵀ + b' a'ᵀ, in place, for a and b (not the same jet) both
+  // with derivatives: the Hessian first (it reads the old value and gradient), then the
+  // gradient, then the value.
+  void multiply_by(const Derived& b) {
+    Derived& a = self();
+    T scratch, term;
+    if constexpr (Order == 2)
+      a.for_each_second([&](T& h, int i, int j) {
+        h *= b.value;
+        scratch = a.value;
+        scratch *= b.second(i, j);
+        h += scratch;
+        scratch = a.gradient[i];
+        scratch *= b.gradient[j];
+        term = b.gradient[i];
+        term *= a.gradient[j];
+        scratch += term;
+        h += scratch;
+      });
+    for (std::size_t i = 0; i < a.gradient.size(); ++i) {
+      a.gradient[i] *= b.value;
+      scratch = a.value;
+      scratch *= b.gradient[i];
+      a.gradient[i] += scratch;
+    }
+    a.value *= b.value;
+  }
+
+ private:
+  Derived& self() { return static_cast<Derived&>(*this); }
+  const Derived& self() const { return static_cast<const Derived&>(*this); }
+};
+
 template <class T, int N, int Order = 2, int Split = 0>
-struct Jet {
+struct Jet : JetArithmetic<Jet<T, N, Order, Split>, T, Order> {
   static_assert(Order == 1 || Order == 2, "Jet: derivatives of order 1 or 2");
   static_assert(Split == 0 || (Order == 2 && 0 < Split && Split < N),
                 "Jet: a block Hessian splits 0 < s < N");
@@ -94,34 +193,10 @@ struct Jet {
     hessian.fill(T(0));
   }
 
-  // φ(u) from φ(u0), φ'(u0), φ''(u0): the chain rule above, in place (`apply_chain`) or on a
-  // copy. The arithmetic works in place through one scratch number and fills the symmetric
-  // Hessian's upper triangle, mirroring it: for MPFR every temporary is an allocation, and these
-  // loops are most of a DEL step's cost. (The elementary functions below take their argument by
-  // value for the same reason: a caller that moves a jet in gets it back transformed, with no
-  // allocation.)
-  Jet& apply_chain(const T& f0, const T& f1, const T& f2) {
-    if constexpr (Order == 2) {
-      T scratch;
-      for_each_second([&](T& h, int i, int j) {
-        h *= f1;
-        scratch = gradient[i];
-        scratch *= gradient[j];
-        scratch *= f2;
-        h += scratch;
-      });
-    } else {
-      (void)f2;
-    }
-    for (auto& g : gradient) g *= f1;
-    value = f0;
-    return *this;
-  }
-  Jet chain(const T& f0, const T& f1, const T& f2) const {
-    Jet r = *this;
-    r.apply_chain(f0, f1, f2);
-    return r;
-  }
+  using Base = JetArithmetic<Jet, T, Order>;
+  using Base::operator*=;
+  using Base::operator/=;
+  static constexpr bool is_constant() { return false; }  // a fixed jet always has its N derivatives
 
   Jet& operator+=(const Jet& b) {
     value += b.value;
@@ -135,57 +210,13 @@ struct Jet {
     for (int i = 0; i < hessian_size; ++i) hessian[i] -= b.hessian[i];
     return *this;
   }
-  // (ab)'' = a b'' + b a'' + a' b'ᵀ + b' a'ᵀ, in place: the Hessian first (it reads the old
-  // value and gradient), then the gradient, then the value.
   Jet& operator*=(const Jet& b) {
     if (&b == this) {
       const Jet copy = b;
       return *this *= copy;
     }
-    T scratch, term;
-    if constexpr (Order == 2)
-      for_each_second([&](T& h, int i, int j) {
-        h *= b.value;
-        scratch = value;
-        scratch *= b.hessian[index(i, j)];
-        h += scratch;
-        scratch = gradient[i];
-        scratch *= b.gradient[j];
-        term = b.gradient[i];
-        term *= gradient[j];
-        scratch += term;
-        h += scratch;
-      });
-    for (int i = 0; i < N; ++i) {
-      gradient[i] *= b.value;
-      scratch = value;
-      scratch *= b.gradient[i];
-      gradient[i] += scratch;
-    }
-    value *= b.value;
+    this->multiply_by(b);
     return *this;
-  }
-  // a / b = a · (1/b), with (1/u)' = −1/u², (1/u)'' = 2/u³.
-  Jet& operator/=(const Jet& b) {
-    T inverse = 1 / b.value;
-    return *this *= b.chain(inverse, -inverse * inverse, 2 * inverse * inverse * inverse);
-  }
-  Jet& operator*=(const T& c) {
-    value *= c;
-    for (auto& g : gradient) g *= c;
-    for (auto& h : hessian) h *= c;
-    return *this;
-  }
-  Jet& operator/=(const T& c) {
-    value /= c;
-    for (auto& g : gradient) g /= c;
-    for (auto& h : hessian) h /= c;
-    return *this;
-  }
-  Jet operator-() const {
-    Jet r = *this;
-    r *= T(-1);
-    return r;
   }
 };
 
@@ -195,7 +226,10 @@ struct Jet {
 // saves work, and the entries a split jet keeps are the full Hessian's. The arithmetic is the
 // fixed jet's, operation for operation, so both give the same numbers.
 template <class T, int Order, int Split>
-struct Jet<T, any_size, Order, Split> {
+struct Jet<T, any_size, Order, Split> : JetArithmetic<Jet<T, any_size, Order, Split>, T, Order> {
+  using Base = JetArithmetic<Jet, T, Order>;
+  using Base::operator*=;
+  using Base::operator/=;
   static_assert(Order == 1 || Order == 2, "Jet: derivatives of order 1 or 2");
   T value = 0;
   std::vector<T> gradient;  // empty: a constant
@@ -237,31 +271,6 @@ struct Jet<T, any_size, Order, Split> {
       }
   }
 
-  Jet& apply_chain(const T& f0, const T& f1, const T& f2) {
-    if (!is_constant()) {
-      if constexpr (Order == 2) {
-        T scratch;
-        for_each_second([&](T& h, int i, int j) {
-          h *= f1;
-          scratch = gradient[i];
-          scratch *= gradient[j];
-          scratch *= f2;
-          h += scratch;
-        });
-      } else {
-        (void)f2;
-      }
-      for (auto& g : gradient) g *= f1;
-    }
-    value = f0;
-    return *this;
-  }
-  Jet chain(const T& f0, const T& f1, const T& f2) const {
-    Jet r = *this;
-    r.apply_chain(f0, f1, f2);
-    return r;
-  }
-
   Jet& operator+=(const Jet& b) {
     value += b.value;
     if (b.is_constant()) return *this;
@@ -292,49 +301,8 @@ struct Jet<T, any_size, Order, Split> {
       *this = b;
       return *this *= a;
     }
-    T scratch, term;
-    if constexpr (Order == 2)
-      for_each_second([&](T& h, int i, int j) {
-        h *= b.value;
-        scratch = value;
-        scratch *= b.second(i, j);
-        h += scratch;
-        scratch = gradient[i];
-        scratch *= b.gradient[j];
-        term = b.gradient[i];
-        term *= gradient[j];
-        scratch += term;
-        h += scratch;
-      });
-    for (std::size_t i = 0; i < gradient.size(); ++i) {
-      gradient[i] *= b.value;
-      scratch = value;
-      scratch *= b.gradient[i];
-      gradient[i] += scratch;
-    }
-    value *= b.value;
+    this->multiply_by(b);
     return *this;
-  }
-  Jet& operator/=(const Jet& b) {
-    T inverse = 1 / b.value;
-    return *this *= b.chain(inverse, -inverse * inverse, 2 * inverse * inverse * inverse);
-  }
-  Jet& operator*=(const T& c) {
-    value *= c;
-    for (auto& g : gradient) g *= c;
-    for (auto& h : hessian) h *= c;
-    return *this;
-  }
-  Jet& operator/=(const T& c) {
-    value /= c;
-    for (auto& g : gradient) g /= c;
-    for (auto& h : hessian) h /= c;
-    return *this;
-  }
-  Jet operator-() const {
-    Jet r = *this;
-    r *= T(-1);
-    return r;
   }
 };
 
@@ -349,6 +317,18 @@ template <class T>
 struct is_jet : std::false_type {};
 template <class T, int N, int Order, int Split>
 struct is_jet<Jet<T, N, Order, Split>> : std::true_type {};
+
+// The scalar at the leaves of nested jets: T for T, Jet<T, N> and Jet<Jet<T, N>, M>.
+template <class S>
+struct leaf_scalar {
+  using type = S;
+};
+template <class T, int N, int Order, int Split>
+struct leaf_scalar<Jet<T, N, Order, Split>> {
+  using type = typename leaf_scalar<T>::type;
+};
+template <class S>
+using leaf_scalar_t = typename leaf_scalar<S>::type;
 
 // Binary operators between jets.
 #define VIVV_JET_BINARY(op)                                                  \

@@ -12,17 +12,9 @@
 
 namespace vivv {
 
+// n numbers: std::array for a fixed n, std::vector for any_size.
 template <class S, int n>
-struct SmallVectorType {
-  using type = std::array<S, n>;
-};
-template <class S>
-struct SmallVectorType<S, any_size> {
-  using type = std::vector<S>;
-};
-// n numbers: std::array for a fixed n, std::vector for any_size (the same as a Point).
-template <class S, int n>
-using SmallVector = typename SmallVectorType<S, n>::type;
+using SmallVector = Coordinates<S, n>;
 
 template <class S, int rows, int cols>
 using SmallMatrix = SmallVector<SmallVector<S, cols>, rows>;

@@ -267,25 +267,21 @@ struct SecondDerivativeTape {
   }
 
   // f, ∇f and the entries at `pattern`, at x, in T (the result's own pattern left empty).
-  EdgePushed<T> evaluate(const T* x) const {
-    std::vector<T>& value = tape_detail::jet_scratch<T>();
-    program.run(x, value);
-    EdgePushed<T> result;
-    result.value = value[program.outputs[0]];
-    result.gradient.reserve(inputs);
-    for (int k = 0; k < inputs; ++k) result.gradient.push_back(value[program.outputs[1 + k]]);
-    result.hessian.reserve(pattern.size());
-    for (std::size_t e = 0; e < pattern.size(); ++e) result.hessian.push_back(value[program.outputs[1 + inputs + e]]);
-    return result;
-  }
+  EdgePushed<T> evaluate(const T* x) const { return run(program, x, pattern.size()); }
   // f and ∇f alone at x (pattern and hessian left empty).
-  EdgePushed<T> evaluate_gradient(const T* x) const {
+  EdgePushed<T> evaluate_gradient(const T* x) const { return run(gradient_program, x, 0); }
+
+ private:
+  // `tape` at x: its value, its `inputs` gradient entries and the `entries` Hessian entries after.
+  EdgePushed<T> run(const Tape<T>& tape, const T* x, std::size_t entries) const {
     std::vector<T>& value = tape_detail::jet_scratch<T>();
-    gradient_program.run(x, value);
+    tape.run(x, value);
     EdgePushed<T> result;
-    result.value = value[gradient_program.outputs[0]];
+    result.value = value[tape.outputs[0]];
     result.gradient.reserve(inputs);
-    for (int k = 0; k < inputs; ++k) result.gradient.push_back(value[gradient_program.outputs[1 + k]]);
+    for (int k = 0; k < inputs; ++k) result.gradient.push_back(value[tape.outputs[1 + k]]);
+    result.hessian.reserve(entries);
+    for (std::size_t e = 0; e < entries; ++e) result.hessian.push_back(value[tape.outputs[1 + inputs + e]]);
     return result;
   }
 };

@@ -540,15 +540,6 @@ std::vector<S> Tape<T>::evaluate(const std::vector<S>& x) const {
 
 namespace tape_detail {
 
-template <class S>
-struct innermost_scalar {
-  using type = S;
-};
-template <class T, int N, int O, int B>
-struct innermost_scalar<Jet<T, N, O, B>> {
-  using type = typename innermost_scalar<T>::type;
-};
-
 // The node values of evaluate_first in jets, kept between calls (one buffer per thread and jet
 // type; a run only does arithmetic, so no evaluation nests inside another): the slots' storage
 // is reused, where a fresh vector allocated every node's jet on every call. An MPFR buffer is
@@ -556,7 +547,7 @@ struct innermost_scalar<Jet<T, N, O, B>> {
 template <class S>
 std::vector<S>& jet_scratch() {
   thread_local std::vector<S> scratch;
-  if constexpr (is_mpfr_v<typename innermost_scalar<S>::type>) {
+  if constexpr (is_mpfr_v<leaf_scalar_t<S>>) {
     thread_local unsigned digits = 0;
     const unsigned now = mpfr_real::default_precision();
     if (digits != now) scratch.clear(), digits = now;

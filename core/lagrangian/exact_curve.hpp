@@ -30,17 +30,6 @@
 
 namespace vivv {
 
-// The scalar at the leaves of nested jets: T for T, Jet<T, N> and Jet<Jet<T, N>, M>.
-template <class S>
-struct leaf_scalar {
-  using type = S;
-};
-template <class T, int N, int Order, int Split>
-struct leaf_scalar<Jet<T, N, Order, Split>> {
-  using type = typename leaf_scalar<T>::type;
-};
-template <class S>
-using leaf_scalar_t = typename leaf_scalar<S>::type;
 
 // The value of x at the leaves (its derivatives dropped).
 template <class S>

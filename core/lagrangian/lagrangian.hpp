@@ -25,17 +25,6 @@ namespace vivv {
 inline thread_local long lagrangian_evaluations = 0;
 inline void count_lagrangian_evaluation() { ++lagrangian_evaluations; }
 
-// The arguments of L: std::array for a fixed dimension, std::vector for any_size.
-template <class S, int n>
-struct PointType {
-  using type = std::array<S, n>;
-};
-template <class S>
-struct PointType<S, any_size> {
-  using type = std::vector<S>;
-};
-template <class S, int n>
-using Coordinates = typename PointType<S, n>::type;
 // What a system of fixed dimension n writes its L for: `S lagrangian(const Point<S, n>& q, const
 // Point<S, n>& w)` (S deduced). A system of any_size takes any container P: `template <class P>
 // auto lagrangian(const P& q, const P& w)`, its scalar P::value_type.

@@ -6,6 +6,7 @@
 // their traits live.
 #pragma once
 
+#include <array>
 #include <initializer_list>
 
 #include <Eigen/Dense>
@@ -22,6 +23,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 namespace vivv {
 
@@ -166,8 +168,22 @@ using Matrix = Eigen::Matrix<T, rows, cols>;
 
 // The dimension of a system known only at run time (a formula system of any size): as a
 // template argument it makes every vector and matrix Eigen-dynamic and every jet a heap jet
-// (core/autodiff/jet.hpp). Fixed dimensions stay where they are faster (1 and 2 coordinates).
+// (core/autodiff/jet.hpp). The tool runs every system at it; fixed dimensions remain for what a
+// C++ user registers, the benchmarks and the unit tests.
 inline constexpr int any_size = Eigen::Dynamic;
+
+// n numbers of type S: std::array for a fixed n, std::vector for any_size (the arguments of L, a
+// Point, and the small vectors of core/autodiff/small_linear_algebra.hpp).
+template <class S, int n>
+struct CoordinatesType {
+  using type = std::array<S, n>;
+};
+template <class S>
+struct CoordinatesType<S, any_size> {
+  using type = std::vector<S>;
+};
+template <class S, int n>
+using Coordinates = typename CoordinatesType<S, n>::type;
 
 // 2n, n + k at compile time: any_size stays any_size.
 constexpr int twice(int n) { return n == any_size ? any_size : 2 * n; }

@@ -128,6 +128,21 @@ struct JacobianAgreement {
   T mismatch = 0;  // |J − D_δ| at the entry worst against its allowance
   T allowed = 0;   // there: 4·max(|D_δ − D_δ/2|, |D_δ/2 − D_δ/4|) + √ε·max |J| + 2·r_i/δ_j
   bool holds = true;
+
+  // One entry's `miss` against its own allowance `bound`: the entry reported is the worst against
+  // its allowance, and a NaN anywhere is the worst of all (no comparison with it holds). Entry by
+  // entry from the first (holds set true before it).
+  void add_entry(const T& miss, const T& bound) {
+    using std::isfinite;
+    const bool entry_holds = miss <= bound;
+    T ratio = bound > 0 ? T(miss / bound) : T(entry_holds ? 0 : 2);
+    if (!isfinite(static_cast<T>(ratio))) ratio = std::numeric_limits<T>::max();
+    if (ratio > worst_ratio) worst_ratio = ratio, mismatch = miss, allowed = bound;
+    holds = holds && entry_holds;
+  }
+
+ private:
+  T worst_ratio = -1;  // the largest miss/allowance of the entries added
 };
 
 template <class T, int m, class Map>
@@ -166,21 +181,12 @@ JacobianAgreement<T> compare_with_differences(const Map& map, const Vector<T, m>
   out.allowed = common;
   out.holds = out.mismatch <= out.allowed;
   if (!output_rounding) return out;
-  // Entry by entry against its own allowance; the entry reported is the worst against it, and a
-  // NaN anywhere is the worst of all (no comparison with it holds).
-  T worst_ratio = -1;
-  out.holds = true;
+  // Entry by entry against its own allowance.
+  out = JacobianAgreement<T>();
   for (int j = 0; j < size; ++j)
-    for (int i = 0; i < size; ++i) {
-      using std::isfinite;
-      const T miss = abs(T(jacobian(i, j) - coarse(i, j)));
-      const T allowed = common + 2 * abs(T((*output_rounding)[i])) / widths[j];
-      const bool holds = miss <= allowed;
-      T ratio = allowed > 0 ? T(miss / allowed) : T(holds ? 0 : 2);
-      if (!isfinite(static_cast<T>(ratio))) ratio = std::numeric_limits<T>::max();
-      if (ratio > worst_ratio) worst_ratio = ratio, out.mismatch = miss, out.allowed = allowed;
-      out.holds = out.holds && holds;
-    }
+    for (int i = 0; i < size; ++i)
+      out.add_entry(T(abs(T(jacobian(i, j) - coarse(i, j)))),
+                    T(common + 2 * abs(T((*output_rounding)[i])) / widths[j]));
   return out;
 }
 

@@ -190,7 +190,6 @@ JacobianAgreement<T> compare_directions_with_differences(const Map& map, const A
   const T root = pow(unit, T(1) / 3);
   const int size = static_cast<int>(x.size());
   JacobianAgreement<T> out;
-  T worst_ratio = -1;
   for (int direction = 0; direction < directions; ++direction) {
     const Vector<T, any_size> g = draw.next<T>(size);
     Vector<T, any_size> d(size);
@@ -210,16 +209,9 @@ JacobianAgreement<T> compare_directions_with_differences(const Map& map, const A
     const T change = nan_max(T((residual[0] - residual[1]).cwiseAbs().maxCoeff()),
                              T((residual[1] - residual[2]).cwiseAbs().maxCoeff()));
     const T common = 4 * change + sqrt(unit) * along.cwiseAbs().maxCoeff();
-    for (int i = 0; i < size; ++i) {
-      using std::isfinite;
-      const T miss = abs(T(residual[0][i]));
-      const T allowed = common + (output_rounding ? T(2 * abs(T((*output_rounding)[i]))) : T(0));
-      const bool holds = miss <= allowed;
-      T ratio = allowed > 0 ? T(miss / allowed) : T(holds ? 0 : 2);
-      if (!isfinite(static_cast<T>(ratio))) ratio = std::numeric_limits<T>::max();
-      if (ratio > worst_ratio) worst_ratio = ratio, out.mismatch = miss, out.allowed = allowed;
-      out.holds = out.holds && holds;
-    }
+    for (int i = 0; i < size; ++i)
+      out.add_entry(T(abs(T(residual[0][i]))),
+                    T(common + (output_rounding ? T(2 * abs(T((*output_rounding)[i]))) : T(0))));
   }
   return out;
 }
