@@ -25,6 +25,23 @@
 
 namespace vivv {
 
+// One h of symplecticity in the per-step evidence: its worst step's defect against its tolerance
+// (what the check judges) and its composition's defect against its own tolerance (a condition of
+// the row), with the columns the report shows.
+template <class T>
+void add_symplecticity_row(PerStepCheck<T>& check, const T& h, int steps, int ulps, const T& worst_defect,
+                           const T& worst_tolerance, const T& largest_defect, const T& composite_defect,
+                           const T& composite_tolerance, const T& step_size_factor) {
+  check.add(h, worst_defect, worst_tolerance,
+            {{"N", steps},
+             {"largest_step_defect", to_decimal<T>(largest_defect)},
+             {"composite_defect", to_decimal<T>(composite_defect)},
+             {"composite_tolerance", to_decimal<T>(composite_tolerance)},
+             {"rounding_units", format_scalar(T(worst_defect / (worst_tolerance / ulps)), 3)},
+             {"step_size_factor", format_scalar(step_size_factor, 3)}},
+            composite_defect <= composite_tolerance);
+}
+
 // The pairs judge each step (fresh) and the composition (carried). mutate-rules' 2 -> 3 for the fresh
 // pairs survives, as it must: a third pair only lowers the stated miss probability (10^-pairs for a
 // step's defect 10 times its tolerance) and changes no verdict a test can pin.
@@ -133,14 +150,8 @@ void measure_map_by_probes(const CaseContext<System>& context, const std::vector
     const auto [composite_defect, composite_tolerance] = composite_probes<T>(
         map_probe_carried_pairs, steps, Claim::ulps, step_unit, h,
         [&](int i) { return probe_defect<T>(start[2 * i], start[2 * i + 1], carried[2 * i], carried[2 * i + 1]); });
-    check.add(h, worst_defect, worst_tolerance,
-              {{"N", steps},
-               {"largest_step_defect", to_decimal<T>(largest_defect)},
-               {"composite_defect", to_decimal<T>(composite_defect)},
-               {"composite_tolerance", to_decimal<T>(composite_tolerance)},
-               {"rounding_units", format_scalar(T(worst_defect / (worst_tolerance / Claim::ulps)), 3)},
-               {"step_size_factor", format_scalar(T(worst_unit / map.jacobian_unit()), 3)}},
-              composite_defect <= composite_tolerance);
+    add_symplecticity_row<T>(check, h, steps, Claim::ulps, worst_defect, worst_tolerance, largest_defect,
+                             composite_defect, composite_tolerance, T(worst_unit / map.jacobian_unit()));
     units.push_back(worst_tolerance / Claim::ulps);
     // The judged step's products against differences of the map on (q, p) along two directions:
     // w from p by the inverse Legendre transform, one step, p' = FL(q', w').

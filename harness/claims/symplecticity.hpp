@@ -55,6 +55,23 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
   // The seed of the probes' draws (evidence.probes.seed): a run is reproduced from its report.
   static constexpr std::uint64_t probe_seed = 0x5eed5eedULL;
 
+  // evidence.tolerance_rule: `ulps` ulps times what `scaled` says, and the scaling test.
+  static std::string tolerance_rule(const std::string& scaled) {
+    return std::to_string(ulps) + " ulps" + scaled + "; a defect falling like a power of h fails as truncation";
+  }
+
+  // evidence.probes: the probes' rule, the chance that they miss a defect (and how much coarser
+  // than the dense check they are), where the dense check stops and the draws' seed.
+  static nlohmann::json probes_evidence(const std::string& rule, const std::string& miss_probability) {
+    return {{"rule", rule},
+            {"miss_probability", miss_probability +
+                                     ": coarser than the dense check by up to 2n for a defect in one entry, about "
+                                     "sqrt(2n) for one spread over the coordinates"},
+            {"dense_limit", "the dense check (every entry of J^T Omega J - Omega) up to " +
+                                std::to_string(dense_limit) + " coordinates"},
+            {"seed", probe_seed}};
+  }
+
   template <LagrangianSystem System, class T = typename System::Scalar, int N = System::dimension>
   static void measure(const CaseContext<System>& context, ClaimResult& claim) {
     const int n = dimension_of(context.system);
@@ -70,32 +87,23 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
       claim.evidence["jacobian"] = "not formed: J applied to vectors, " + context.map->jacobian_method() +
                                    " taken along each vector instead of each coordinate";
       claim.evidence["jacobian_unit"] = to_decimal<T>(context.map->jacobian_unit(), 6);
-      claim.evidence["probes"] = {
-          {"rule",
-           "at each step " + std::to_string(map_probe_fresh_pairs) +
+      claim.evidence["probes"] = probes_evidence(
+          "at each step " + std::to_string(map_probe_fresh_pairs) +
                " new pairs of standard Gaussian vectors (xi, eta) on (q, p): |xi^T (J^T Omega J - Omega) eta| per "
                "unit |xi||eta| against " + std::to_string(ulps) +
                " ulps x u x max(1, g)^2, u the products' relative rounding (evidence.jacobian_unit, or the noise "
                "measured in the map's answers) and g the largest |J v|/|v| of the step's vectors; " +
                std::to_string(map_probe_carried_pairs) +
                " pairs carried through the whole run for the composition, against N x that x max(1, |Phi xi|/|xi|, "
-               "|Phi eta|/|eta|)^2"},
-          {"miss_probability",
-           "a step whose ||J^T Omega J - Omega||_2 is at least 10 x its tolerance x |xi||eta| passes its " +
+               "|Phi eta|/|eta|)^2",
+          "a step whose ||J^T Omega J - Omega||_2 is at least 10 x its tolerance x |xi||eta| passes its " +
                std::to_string(map_probe_fresh_pairs) + " pairs with probability at most 10^-" +
                std::to_string(map_probe_fresh_pairs) + ", a defect present at m steps at most 10^-(" +
                std::to_string(map_probe_fresh_pairs) + " m), the composition 10^-" +
-               std::to_string(map_probe_carried_pairs) +
-               ": coarser than the dense check by up to 2n for a defect in one entry, about sqrt(2n) for one "
-               "spread over the coordinates"},
-          {"dense_limit", "the dense check (every entry of J^T Omega J - Omega) up to " +
-                              std::to_string(dense_limit) + " coordinates"},
-          {"seed", probe_seed}};
-      claim.evidence["tolerance_rule"] =
-          std::to_string(ulps) +
-          " ulps × u × max(1, g)² per step by probes (evidence.probes; measured: the step with the largest "
-          "defect/tolerance); the composition by carried probes; a defect falling like a power of h fails as "
-          "truncation";
+               std::to_string(map_probe_carried_pairs));
+      claim.evidence["tolerance_rule"] = tolerance_rule(
+          " × u × max(1, g)² per step by probes (evidence.probes; measured: the step with the largest "
+          "defect/tolerance); the composition by carried probes");
     } else if (context.map) {
       // A one-step map: its Jacobian by jets through its own code; no Hessian blocks to size.
       visit_map_trajectories(context, "symplecticity: Jacobians", [&](const T& h, const auto& x) {
@@ -149,11 +157,9 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
       });
       claim.evidence["jacobian"] = context.map->jacobian_method();
       claim.evidence["jacobian_unit"] = to_decimal<T>(context.map->jacobian_unit(), 6);
-      claim.evidence["tolerance_rule"] =
-          std::to_string(ulps) +
-          " ulps × max(1, |J|)² per step (measured: the step with the largest "
-          "defect/tolerance); N × that × max(1, |J_N…J_1|)² for the composition; "
-          "a defect falling like a power of h fails as truncation";
+      claim.evidence["tolerance_rule"] = tolerance_rule(
+          " × max(1, |J|)² per step (measured: the step with the largest defect/tolerance); N × that × "
+          "max(1, |J_N…J_1|)² for the composition");
     } else if (judged_by_probes(context)) {
       if constexpr (N == any_size) measure_by_probes(context, exponents, check, units, jacobian_checks);
       claim.evidence["jacobian"] =
@@ -161,29 +167,22 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
           "B = d p_begin[L_d], E = d p_end[past L_d] at (q_k, q_k+1)); J applied to vectors for the composition "
           "and the check against differences: dq' = B_e^-1 (dp - B_b dq), dp' = E_b dq + E_e dq', B_e factored by "
           "a sparse LU";
-      claim.evidence["probes"] = {
-          {"rule",
-           std::to_string(probe_pairs) +
+      claim.evidence["probes"] = probes_evidence(
+          std::to_string(probe_pairs) +
                " pairs of standard Gaussian vectors (xi, eta) on (q, p) carried through the whole run: "
                "|omega(Phi xi, Phi eta) - omega(xi, eta)| = |xi^T (Phi^T Omega Phi - Omega) eta| per unit "
                "|xi||eta| (composite_defect) against N x " +
                std::to_string(ulps) +
                " ulps x max_k(s_k r_k^2) x max(1, |Phi xi|/|xi|, |Phi eta|/|eta|)^2, r_k the carried vectors' "
-               "stretch at step k (composite_tolerance)"},
-          {"miss_probability",
-           "a composition whose ||Phi^T Omega Phi - Omega||_2 is at least 10 x its tolerance x |xi||eta| "
+               "stretch at step k (composite_tolerance)",
+          "a composition whose ||Phi^T Omega Phi - Omega||_2 is at least 10 x its tolerance x |xi||eta| "
            "(|xi||eta| about 2n) passes all " +
                std::to_string(probe_pairs) + " pairs with probability at most 10^-" + std::to_string(probe_pairs) +
-               " (P(|xi^T D eta| < t ||D||_2) <= t for antisymmetric D): coarser than the dense check by up to "
-               "2n for a defect in one entry, about sqrt(2n) for one spread over the coordinates"},
-          {"dense_limit", "the dense check (every entry of J^T Omega J - Omega) up to " +
-                              std::to_string(dense_limit) + " coordinates"},
-          {"seed", probe_seed}};
-      claim.evidence["tolerance_rule"] =
-          std::to_string(ulps) +
-          " ulps × max(1, |Hessian blocks|) per step for max(|E_b + B_eᵀ|, |B_b − B_bᵀ|, |E_e − E_eᵀ|) "
+               " (P(|xi^T D eta| < t ||D||_2) <= t for antisymmetric D)");
+      claim.evidence["tolerance_rule"] = tolerance_rule(
+          " × max(1, |Hessian blocks|) per step for max(|E_b + B_eᵀ|, |B_b − B_bᵀ|, |E_e − E_eᵀ|) "
           "(measured: the step with the largest defect/tolerance), balanced; the composition by probes "
-          "(evidence.probes); a defect falling like a power of h fails as truncation";
+          "(evidence.probes)");
       claim.evidence["mismatched_del"] = context.scheme.mismatched;
     } else {
       visit_trajectories(context, "symplecticity: Jacobians", [&](const T& h, const auto& q) {
@@ -240,11 +239,9 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
       claim.evidence["jacobian"] =
           "implicit function theorem: dq'/d(q, p) = B_e^-1 (-B_b, I), dp'/d(q, p) = (E_b, 0) + E_e dq'/d(q, p) "
           "with B = d p_begin[L_d], E = d p_end[past L_d] at (q_k, q_k+1)";
-      claim.evidence["tolerance_rule"] =
-          std::to_string(ulps) +
-          " ulps × max(1, |Hessian blocks|) × max(1, |J|)² per step (measured: the "
-          "step with the largest defect/tolerance); N × that × max(1, |J_N…J_1|)² "
-          "for the composition; a defect falling like a power of h fails as truncation";
+      claim.evidence["tolerance_rule"] = tolerance_rule(
+          " × max(1, |Hessian blocks|) × max(1, |J|)² per step (measured: the step with the largest "
+          "defect/tolerance); N × that × max(1, |J_N…J_1|)² for the composition");
       claim.evidence["mismatched_del"] = context.scheme.mismatched;
     }
     if (!exponents.empty())
@@ -453,14 +450,8 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
       const auto [composite_defect, composite_tolerance] =
           composite_probes<T>(probe_pairs, steps, ulps, step_unit, h,
                               [&](int i) { return probe_defect<T>(start_xi[i], start_eta[i], xi[i], eta[i]); });
-      check.add(h, worst_defect, worst_tolerance,
-                {{"N", steps},
-                 {"largest_step_defect", to_decimal<T>(largest_defect)},
-                 {"composite_defect", to_decimal<T>(composite_defect)},
-                 {"composite_tolerance", to_decimal<T>(composite_tolerance)},
-                 {"rounding_units", format_scalar(T(worst_defect / (worst_tolerance / ulps)), 3)},
-                 {"step_size_factor", format_scalar(T(worst_tolerance / (ulps * epsilon<T>())), 3)}},
-                composite_defect <= composite_tolerance);
+      add_symplecticity_row<T>(check, h, steps, ulps, worst_defect, worst_tolerance, largest_defect,
+                               composite_defect, composite_tolerance, T(worst_tolerance / (ulps * epsilon<T>())));
       units.push_back(worst_tolerance / ulps);
       // The judged step's J against differences of its map on (q, p) along two directions.
       const V& q_next = q[worst + 1];
@@ -554,14 +545,8 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
                                   "-step composition's ";
     require_finite(composite_defect, composite + "|JᵀΩJ − Ω|");
     require_finite(composite_tolerance, composite + "tolerance");
-    check.add(h, worst_defect, worst_tolerance,
-              {{"N", steps},
-               {"largest_step_defect", to_decimal<T>(largest_defect)},
-               {"composite_defect", to_decimal<T>(composite_defect)},
-               {"composite_tolerance", to_decimal<T>(composite_tolerance)},
-               {"rounding_units", format_scalar(T(worst_defect / (worst_tolerance / ulps)), 3)},
-               {"step_size_factor", format_scalar(sizes[worst_step], 3)}},
-              composite_defect <= composite_tolerance);
+    add_symplecticity_row<T>(check, h, steps, ulps, worst_defect, worst_tolerance, largest_defect, composite_defect,
+                             composite_tolerance, T(sizes[worst_step]));
     return worst_tolerance / ulps;
   }
 };
