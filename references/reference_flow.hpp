@@ -172,10 +172,10 @@ class ReferenceFlow {
 
   // How tolerance() is backed up.
   std::string cross_check() const {
-    const std::string check = three_digits(check_local_tolerance());
     if constexpr (closed_form) {
       return closed_form_cross_check<T>();
     } else {
+      const std::string check = three_digits(check_local_tolerance());
       const bool floored =
           check_local_tolerance() > tighter(local_tolerance_for(effective_tolerance_));
       return "local error control at tol/1e6 per step; estimate_error(v, t) reruns the "
