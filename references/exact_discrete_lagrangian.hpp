@@ -108,7 +108,7 @@ class ExactDiscreteLagrangian {
       });
       if (b == h) break;
     }
-    State<T, N> end = TaylorFlow<System>::state_of(solution.state_at(h));
+    State<T, N> end = flow_.state_of(solution.state_at(h));
     result.w_begin = start.w;
     result.w_end = end.w;
     result.p_begin = momentum(system_, q_begin, start.w);

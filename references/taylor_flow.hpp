@@ -79,6 +79,9 @@ class TaylorIntegrator {
   // Appends steps (full Jorba–Zou steps, never shortened) until the trajectory covers t_end.
   void extend(TaylorTrajectory<T>& trajectory, const T& t_end);
 
+  // A coordinate that is the time itself (t'' = 0, t' = 1: an L that depends on t), or −1: left out
+  // of the norms that choose the step, where its size would loosen the other coordinates' control.
+  int clock = -1;
   // Steps one advance or extend may take; a pace that would need more ends the run after a
   // thousand steps (the message says how many it would take). A dense trajectory keeps every
   // step's polynomial: a million steps of order 60 in 2 coordinates are gigabytes in MPFR.
@@ -144,6 +147,7 @@ T TaylorIntegrator<T>::jorba_zou_step(const T& at) const {
   const T* norm_last = &zero;
   const T* norm_previous = &zero;
   for (int i = 0; i < m; ++i) {
+    if (i == clock) continue;
     for (int part = 0; part < 2; ++part) {
       const T& y0 = part == 0 ? expansion_.position(i, 0) : expansion_.velocity(i, 0);
       const T& yp = part == 0 ? expansion_.position(i, p) : expansion_.velocity(i, p);
@@ -270,7 +274,20 @@ void TaylorIntegrator<T>::extend(TaylorTrajectory<T>& trajectory, const T& t_end
   }
 }
 
-// The Taylor flow F_t of a Lagrangian system.
+// The tape a Taylor flow integrates: the Euler–Lagrange acceleration a(q, w), or, for an L that
+// depends on t, a(t, q, w) over the coordinates (q, t) with t'' = 0
+// (core/lagrangian/euler_lagrange_tape.hpp: time_extended_euler_lagrange_tape).
+template <TapeRecordable System>
+Tape<typename System::Scalar> flow_tape(const System& system) {
+  if constexpr (SparselyDifferentiated<System>) {
+    if (depends_on_time(system)) return time_extended_euler_lagrange_tape(system);
+  }
+  return euler_lagrange_tape(system);
+}
+
+// The Taylor flow F_t of a Lagrangian system. For an L that depends on t, every trajectory starts
+// at the system's time t_0 (core/lagrangian/lagrangian.hpp: at_time) and F_t(start) is the state
+// at t_0 + t.
 template <TapeRecordable System>
 class TaylorFlow {
  public:
@@ -280,7 +297,9 @@ class TaylorFlow {
   // `tolerance`: the Jorba–Zou step tolerance (local error per step about tolerance·max(1, |y|));
   // `order`: 0 for Jorba–Zou's, or another (the reference's check at the floor of a precision).
   TaylorFlow(const System& system, const T& tolerance, int order = 0)
-      : system_(system), integrator_(euler_lagrange_tape(system), tolerance, order) {}
+      : system_(system), integrator_(flow_tape(system), tolerance, order) {
+    if (timed()) integrator_.clock = dimension_of(system);
+  }
 
   const System& system() const { return system_; }
   int order() const { return integrator_.order(); }
@@ -317,19 +336,22 @@ class TaylorFlow {
     return states;
   }
 
-  // y = (q, w) as the integrator's components.
-  static std::vector<T> components(const State<T, N>& v) {
-    const int size = static_cast<int>(v.q.size());
-    std::vector<T> y(2 * size);
-    for (int i = 0; i < size; ++i) y[i] = v.q[i], y[size + i] = v.w[i];
+  // y = (q, w) as the integrator's components; for an L that depends on t, (q, t_0, w, 1).
+  std::vector<T> components(const State<T, N>& v) const {
+    const int size = static_cast<int>(v.q.size()), m = size + (timed() ? 1 : 0);
+    std::vector<T> y(2 * m);
+    for (int i = 0; i < size; ++i) y[i] = v.q[i], y[m + i] = v.w[i];
+    if (timed()) y[size] = system_time(system_), y[2 * m - 1] = 1;
     return y;
   }
-  static State<T, N> state_of(const std::vector<T>& y) {
-    const int size = static_cast<int>(y.size()) / 2;
+  // The state of components y (the time dropped).
+  State<T, N> state_of(const std::vector<T>& y) const {
+    const int m = static_cast<int>(y.size()) / 2, size = m - (timed() ? 1 : 0);
     State<T, N> v{Vector<T, N>(size), Vector<T, N>(size)};
-    for (int i = 0; i < size; ++i) v.q[i] = y[i], v.w[i] = y[size + i];
+    for (int i = 0; i < size; ++i) v.q[i] = y[i], v.w[i] = y[m + i];
     return v;
   }
+  bool timed() const { return depends_on_time(system_); }
 
  private:
   System system_;

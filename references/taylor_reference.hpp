@@ -254,7 +254,7 @@ class TaylorReference {
     if (shared_->keeping) {
       if (auto known = shared_->answers.find(Asked{start, t}); known != shared_->answers.end()) return known->second;
     }
-    State<T, N> state = TaylorFlow<System>::state_of(trajectory().state_at(t, shared_->flow));
+    State<T, N> state = shared_->flow.state_of(trajectory().state_at(t, shared_->flow));
     if (shared_->keeping) shared_->answers.emplace(Asked{start, t}, state);
     return state;
   }
@@ -317,7 +317,7 @@ class TaylorReference {
         return cache.front();
       }
     }
-    auto y = TaylorFlow<System>::components(start);
+    auto y = shared_->flow.components(start);
     cache.push_front(Cached{start, TaylorTrajectory<T>(y, 1), TaylorTrajectory<T>(y, -1)});
     if (cache.size() > 8) cache.pop_back();
     return cache.front();

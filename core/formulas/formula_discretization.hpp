@@ -32,6 +32,10 @@ std::shared_ptr<const Tape<typename System::Scalar>> record_discrete_lagrangian(
   using V = TapeScalar<T>;
   constexpr int N = System::dimension;
   const int n = dimension_of(system);
+  if (depends_on_time(system))
+    throw FormulaError(tree.position, "an L_d expression of an L that uses t is not supported: its L(x, v) would "
+                                      "hold t fixed; use a built-in rule or Galerkin's, which evaluate L at their "
+                                      "quadrature's times");
   TapeRecording<T> recording(2 * n + 1);
   FormulaScope<T, V> scope;
   FormulaValue<V> qb{{}, true, false, {}}, qe{{}, true, false, {}};
@@ -66,6 +70,9 @@ std::shared_ptr<const Tape<typename System::Scalar>> record_discrete_lagrangian(
   using V = TapeScalar<T>;
   constexpr int N = System::dimension;
   const int n = dimension_of(system);
+  if (depends_on_time(system))
+    throw std::invalid_argument("an L_d registered as C++ code for an L that uses t is not supported: its L(x, v) "
+                                "would hold t fixed");
   TapeRecording<T> recording(2 * n + 1);
   std::vector<V> qb, qe;
   for (int i = 0; i < n; ++i) qb.push_back(recording.input(i)), qe.push_back(recording.input(n + i));

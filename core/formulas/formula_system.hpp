@@ -44,6 +44,8 @@ struct FormulaSystemDefinition {
   // sparse derivatives), counted when the case was read for the memory estimate (0: not counted:
   // one or two coordinates, or an L whose mass matrix is singular, which the reading refuses).
   std::size_t acceleration_operations = 0;
+  // L uses the time t: its tapes take t as one more input, after (q, w).
+  bool time_dependent = false;
 };
 
 // n: the number of coordinates, fixed (1, 2) or any_size (then the definition's, at run time).
@@ -51,22 +53,33 @@ template <class T, int n>
 struct FormulaSystem {
   using Scalar = T;
   static constexpr int dimension = n;
-  std::shared_ptr<const Tape<T>> program;  // inputs q_1 … q_n, w_1 … w_n; one output, L
+  std::shared_ptr<const Tape<T>> program;  // inputs q_1 … q_n, w_1 … w_n (and t, timed); one output, L
   // Sized at run time: L's gradient and sparse Hessian, recorded from `program` by edge pushing
   // (core/autodiff/sparse_hessian.hpp), which the Q × Q rules and the DEL step use instead of
   // dense jets (core/qxq/sparse_legendre.hpp). Null at the fixed sizes 1 and 2.
   std::shared_ptr<const SecondDerivativeTape<T>> derivatives;
   int coordinates = n;
+  // An L that uses t (its tapes' input 2n), evaluated at `time` (core/lagrangian/lagrangian.hpp: at_time).
+  bool timed = false;
+  T time = T(0);
 
   int size() const { return coordinates; }
 
-  // L(q, w): the recorded program run in S.
+  // L(q, w) at the system's time: the recorded program run in S.
   template <class P>
   auto lagrangian(const P& q, const P& w) const {
+    return lagrangian_at(time, q, w);
+  }
+
+  // L(q, w) at time t (which an L that does not use t ignores). t is a constant of S: jets over
+  // (q, w) do not differentiate in it.
+  template <class P>
+  auto lagrangian_at(const T& t, const P& q, const P& w) const {
     using S = typename P::value_type;
     count_lagrangian_evaluation();
-    Coordinates<S, twice(n)> x = make_point<S, twice(n)>(2 * coordinates);
+    Coordinates<S, plus(twice(n), 1)> x = make_point<S, plus(twice(n), 1)>(2 * coordinates + (timed ? 1 : 0));
     for (int i = 0; i < coordinates; ++i) x[i] = q[i], x[coordinates + i] = w[i];
+    if (timed) x[2 * coordinates] = S(t);
     return S(program->evaluate_first(x.data()));
   }
 
@@ -135,28 +148,31 @@ void bind_formula_parameters(FormulaScope<T, V>& scope, const FormulaSystemDefin
   bind_formula_names<T, V>(scope, names, values, true);
 }
 
-// The scope of a system formula in V: coordinates and velocities from `q`, `w`, parameters in T.
+// The scope of a system formula in V: coordinates and velocities from `q`, `w`, parameters in T,
+// and t from `time` for an L that uses it.
 template <class T, class V>
 FormulaScope<T, V> system_formula_scope(const FormulaSystemDefinition& definition, const std::vector<V>& q,
-                                        const std::vector<V>& w) {
+                                        const std::vector<V>& w, const V& time = V(0)) {
   FormulaScope<T, V> scope;
   bind_formula_names<T, V>(scope, definition.coordinates, q, false);
   bind_formula_names<T, V>(scope, definition.velocities, w, false);
   bind_formula_parameters<T, V>(scope, definition);
+  if (definition.time_dependent) scope.names["t"] = FormulaValue<V>::scalar(time, false);
   return scope;
 }
 
-// L of `definition` (n coordinates) recorded in T: its tape alone, inputs q_1 … q_n, w_1 … w_n.
-// Throws FormulaError for a formula that has no meaning (unknown names, vectors, non-constant
-// exponents), TapeCeilingReached past a TapeCeiling.
+// L of `definition` (n coordinates) recorded in T: its tape alone, inputs q_1 … q_n, w_1 … w_n
+// and, for an L that uses t, t. Throws FormulaError for a formula that has no meaning (unknown
+// names, vectors, non-constant exponents), TapeCeilingReached past a TapeCeiling.
 template <class T>
 Tape<T> record_lagrangian(const FormulaSystemDefinition& definition, int n) {
-  TapeRecording<T> recording(2 * n);
+  TapeRecording<T> recording(2 * n + (definition.time_dependent ? 1 : 0));
   std::vector<TapeScalar<T>> q, w;
   for (int i = 0; i < n; ++i) q.push_back(recording.input(i)), w.push_back(recording.input(n + i));
   if (definition.recorded)
     return recording.finish({definition.recorded->template get<T>()(q, w, definition.parameters)});
-  const auto scope = system_formula_scope<T>(definition, q, w);
+  const auto scope = definition.time_dependent ? system_formula_scope<T>(definition, q, w, recording.input(2 * n))
+                                               : system_formula_scope<T>(definition, q, w);
   return recording.finish({interpret(definition.lagrangian, scope).components[0]});
 }
 
@@ -167,6 +183,7 @@ FormulaSystem<T, N> make_formula_system(const FormulaSystemDefinition& definitio
   const int n = N == any_size ? static_cast<int>(definition.coordinates.size()) : N;
   FormulaSystem<T, N> system;
   system.coordinates = n;
+  system.timed = definition.time_dependent;
   system.program = std::make_shared<const Tape<T>>(record_lagrangian<T>(definition, n));
   if constexpr (N == any_size) system.derivatives = std::make_shared<const SecondDerivativeTape<T>>(*system.program);
   if (definition.recorded) return system;
@@ -191,8 +208,9 @@ FormulaSystem<T, N> make_formula_system(const FormulaSystemDefinition& definitio
 // L at (q, w) evaluated from the tree in T, naming the first sqrt, log, power or
 // quotient whose argument is outside its domain there (FormulaError).
 template <class T>
-T check_formula_domain(const FormulaSystemDefinition& definition, const std::vector<T>& q, const std::vector<T>& w) {
-  return interpret(definition.lagrangian, system_formula_scope<T>(definition, q, w)).components[0];
+T check_formula_domain(const FormulaSystemDefinition& definition, const std::vector<T>& q, const std::vector<T>& w,
+                       const T& time = T(0)) {
+  return interpret(definition.lagrangian, system_formula_scope<T>(definition, q, w, time)).components[0];
 }
 
 }  // namespace vivv

@@ -61,13 +61,20 @@ concept TapeRecordable =
 // L's and M's fill-in, where the dense recording is O(n³) (a jet of n² entries through every node).
 // After a row exchange the pattern is no longer symmetric, and the rows below that hold a column
 // are found by looking at each (O(n) a column, only for an M with identically zero diagonal entries).
+//
+// An L that depends on t (its tape's inputs (q, w, t), 2n + 1 of them): the tape is over the
+// coordinates (q, t) — inputs (q_1 … q_n, t, w_1 … w_n, w_t) — with the outputs (a, 0), so that
+// integrating x'' = a(x, x') from (q, t_0, w, 1) keeps t' = 1 and takes L at the time reached:
+//   a(t, q, w) = M⁻¹ (dL/dq − (d²L/dw dq) w − (d²L/dw dt) w_t)     (Marsden & West §4).
 template <class T>
 Tape<T> sparse_euler_lagrange_tape(const SecondDerivativeTape<T>& derivatives) {
   using S = TapeScalar<T>;
-  const int n = derivatives.inputs / 2;
-  TapeRecording<T> recording(2 * n);
-  std::vector<S> x;
-  for (int k = 0; k < 2 * n; ++k) x.push_back(recording.input(k));
+  const bool timed = derivatives.inputs % 2 == 1;
+  const int n = derivatives.inputs / 2, m = n + (timed ? 1 : 0);
+  TapeRecording<T> recording(2 * m);
+  std::vector<S> x(derivatives.inputs);  // L's inputs (q, w and t) from the tape's (q, t, w, w_t)
+  for (int i = 0; i < n; ++i) x[i] = recording.input(i), x[n + i] = recording.input(m + i);
+  if (timed) x[2 * n] = recording.input(n);
   std::vector<S> value;
   derivatives.program.run(x.data(), value);
   const auto output = [&](std::size_t k) { return value[derivatives.program.outputs[k]]; };
@@ -76,8 +83,10 @@ Tape<T> sparse_euler_lagrange_tape(const SecondDerivativeTape<T>& derivatives) {
   for (int i = 0; i < n; ++i) rhs[i] = output(1 + i);
   for (std::size_t e = 0; e < derivatives.pattern.size(); ++e) {
     const auto [r, c] = derivatives.pattern[e];  // r >= c
-    const S entry = output(1 + 2 * n + e);
-    if (c >= n) {
+    const S entry = output(1 + derivatives.inputs + e);
+    if (r == 2 * n) {  // ∂²L/∂t∂(q, w, t): only ∂²L/∂w_i∂t enters, times w_t
+      if (c >= n && c < 2 * n) rhs[c - n] = rhs[c - n] - entry * recording.input(2 * m - 1);
+    } else if (c >= n) {
       M[r - n][c - n] = entry, M[c - n][r - n] = entry;
     } else if (r >= n) {
       rhs[r - n] = rhs[r - n] - entry * x[n + c];  // (d²L/dw_i dq_j) w_j, i = r − n, j = c
@@ -121,6 +130,7 @@ Tape<T> sparse_euler_lagrange_tape(const SecondDerivativeTape<T>& derivatives) {
     for (auto k = M[i].upper_bound(i); k != M[i].end(); ++k) sum = sum - k->second * acceleration[k->first];
     acceleration[i] = sum / M[i].at(i);
   }
+  if (timed) acceleration.push_back(S(T(0)));  // t'' = 0
   return recording.finish(acceleration);
 }
 
@@ -131,6 +141,9 @@ Tape<typename System::Scalar> euler_lagrange_tape(const System& system) {
   using S = TapeScalar<T>;
   constexpr int N = System::dimension;
   const int n = dimension_of(system);
+  if (depends_on_time(system))
+    throw std::logic_error("euler_lagrange_tape: the acceleration of an L that depends on t is a(t, q, w), which "
+                           "this tape over (q, w) cannot hold (time_extended_euler_lagrange_tape holds it)");
   if constexpr (SparselyDifferentiated<System>) {
     if (system.derivatives) return sparse_euler_lagrange_tape(*system.derivatives);
   }
@@ -172,6 +185,16 @@ Tape<typename System::Scalar> euler_lagrange_tape(const System& system) {
     acceleration[i] = sum / augmented[i][i];
   }
   return recording.finish(acceleration);
+}
+
+// The acceleration of an L that depends on t as a tape over the coordinates (q, t) with t'' = 0
+// (sparse_euler_lagrange_tape): inputs (q_1 … q_n, t, w_1 … w_n, w_t), outputs (a_1 … a_n, 0), for
+// the Taylor flow (references/taylor_flow.hpp), which starts it at (q, t_0, w, 1).
+template <SparselyDifferentiated System>
+Tape<typename System::Scalar> time_extended_euler_lagrange_tape(const System& system) {
+  if (!depends_on_time(system) || !system.derivatives)
+    throw std::logic_error("time_extended_euler_lagrange_tape: for an L that depends on t, with its derivative tape");
+  return sparse_euler_lagrange_tape(*system.derivatives);
 }
 
 // Tape of x'' = a(x, x') extended by its variational equations (formula at the top of the file):

@@ -94,9 +94,58 @@ concept SparselyDifferentiated =
       { *system.derivatives } -> std::convertible_to<const SecondDerivativeTape<typename System::Scalar>&>;
     };
 
+// Time. A system whose L depends on t (a formula system whose L uses t: `timed`) carries the time
+// its L is evaluated at (`time`): at_time(system, t) is the same system at t, and what reads L at
+// a state — momentum, energy, the Euler–Lagrange acceleration — reads it at the system's time. A
+// discrete Lagrangian on (q_b, q_e) starts at the system's time t_b and evaluates L at its
+// quadrature's times t_b + c·h (core/qxq/discrete_lagrangian.hpp). Every other system is
+// autonomous, at time 0, and at_time leaves it as it is.
+template <class System>
+concept CarriesTime = requires(const System& system) {
+  { system.timed } -> std::convertible_to<bool>;
+  { system.time } -> std::convertible_to<typename System::Scalar>;
+};
+
+template <class System>
+bool depends_on_time(const System& system) {
+  if constexpr (CarriesTime<System>) return system.timed;
+  else return (void)system, false;
+}
+
+template <class System>
+typename System::Scalar system_time(const System& system) {
+  if constexpr (CarriesTime<System>) return system.time;
+  else return (void)system, typename System::Scalar(0);
+}
+
+template <class System>
+System at_time(System system, const typename System::Scalar& t) {
+  if constexpr (CarriesTime<System>) system.time = t;
+  else (void)t;
+  return system;
+}
+
+// L(q, w) at time t (an autonomous system's L at any t).
+template <class System, class P>
+auto lagrangian_at(const System& system, const typename System::Scalar& t, const P& q, const P& w) {
+  if constexpr (CarriesTime<System>) return system.lagrangian_at(t, q, w);
+  else return (void)t, system.lagrangian(q, w);
+}
+
+// The inputs of L's tape, (q, w) and, for an L that depends on t, the time after them (index 2n):
+// 2n or 2n + 1 numbers, the time set to the system's, (q, w) to zero.
+template <SparselyDifferentiated System>
+std::vector<typename System::Scalar> lagrangian_tape_inputs(const System& system, int n) {
+  std::vector<typename System::Scalar> x(2 * n + (depends_on_time(system) ? 1 : 0));
+  if (depends_on_time(system)) x[2 * n] = system_time(system);
+  return x;
+}
+
 // L's value, gradient and, with `hessian`, the entries of its sparse Hessian at x = (q, w) (2n
-// numbers) from such a system's tape: one evaluation of L, counted as the dense path counts one.
-// Every reader of L's tape goes through here, so that none forgets the count.
+// numbers, and the time after them for an L that depends on t: lagrangian_tape_inputs) from such
+// a system's tape: one evaluation of L, counted as the dense path counts one. Its gradient and
+// Hessian are over all of its inputs, t's included, so a reader of (q, w)'s entries skips those in
+// row 2n. Every reader of L's tape goes through here, so that none forgets the count.
 template <SparselyDifferentiated System>
 EdgePushed<typename System::Scalar> lagrangian_tape(const System& system, const typename System::Scalar* x,
                                                     bool hessian = true) {
@@ -109,7 +158,7 @@ template <SparselyDifferentiated System>
 EdgePushed<typename System::Scalar> lagrangian_tape(const System& system, const VectorOf<System>& q,
                                                     const VectorOf<System>& w, bool hessian = true) {
   const int n = static_cast<int>(q.size());
-  std::vector<typename System::Scalar> x(2 * n);
+  std::vector<typename System::Scalar> x = lagrangian_tape_inputs(system, n);
   for (int i = 0; i < n; ++i) x[i] = q[i], x[n + i] = w[i];
   return lagrangian_tape(system, x.data(), hessian);
 }
@@ -154,6 +203,7 @@ auto lagrangian_derivatives(const System& system,
       for (int i = 0; i < n; ++i) d.dL_dq[i] = L.gradient[i], d.dL_dw[i] = L.gradient[n + i];
       for (std::size_t e = 0; e < L.hessian.size(); ++e) {
         const auto [r, c] = system.derivatives->pattern[e];  // r >= c
+        if (r >= 2 * n) continue;  // an entry in t
         if (c >= n) d.d2L_dw2(r - n, c - n) = d.d2L_dw2(c - n, r - n) = L.hessian[e];
         else if (r >= n) d.d2L_dwdq(r - n, c) = L.hessian[e];
       }
@@ -253,7 +303,10 @@ auto sparse_euler_lagrange_acceleration(const System& system, const VectorOf<Sys
   std::vector<Eigen::Triplet<T>> mass;
   for (std::size_t e = 0; e < L.hessian.size(); ++e) {
     const auto [r, c] = system.derivatives->pattern[e];  // r >= c
-    if (c >= n) {
+    if (r == 2 * n) {
+      // An L that depends on t: d/dt ∂L/∂w holds ∂²L/∂w∂t too (Marsden & West §4).
+      if (c >= n && c < 2 * n) rhs[c - n] -= L.hessian[e];
+    } else if (c >= n) {
       mass.emplace_back(r - n, c - n, L.hessian[e]);
       if (r != c) mass.emplace_back(c - n, r - n, L.hessian[e]);
     } else if (r >= n) {
@@ -269,8 +322,9 @@ auto sparse_euler_lagrange_acceleration(const System& system, const VectorOf<Sys
   return acceleration;
 }
 
-// Euler–Lagrange acceleration q'' = M⁻¹ (dL/dq − (d²L/dw dq) w), docs/theory.md.
-// A singular (or numerically singular) mass matrix is an error naming the state.
+// Euler–Lagrange acceleration q'' = M⁻¹ (dL/dq − (d²L/dw dq) w − d²L/dw dt), docs/theory.md.
+// A singular (or numerically singular) mass matrix is an error naming the state. The dense path's
+// jets hold t constant, so an L that depends on t takes the sparse one.
 template <LagrangianSystem System>
 auto euler_lagrange_acceleration(const System& system,
                                  const VectorOf<System>& q, const VectorOf<System>& w) {
@@ -280,6 +334,8 @@ auto euler_lagrange_acceleration(const System& system,
   if constexpr (SparselyDifferentiated<System>) {
     if (system.derivatives) return sparse_euler_lagrange_acceleration(system, q, w);
   }
+  if (depends_on_time(system))
+    throw std::logic_error("euler_lagrange_acceleration: an L that depends on t needs its derivative tape (∂²L/∂w∂t)");
   auto d = lagrangian_derivatives(system, q, w);
   if (!isfinite(d.value))
     throw SingularLagrangianError("L(q, w) is not finite at q = " + to_decimal<T>(q[0]) +

@@ -36,14 +36,17 @@ struct DelTrajectory {
 };
 
 // One DEL step: q_{k+1} from p_begin[future](q_k, q_{k+1}) = p_end[past](q_{k−1}, q_k),
-// by Newton from the linear extrapolation 2 q_k − q_{k−1}.
+// by Newton from the linear extrapolation 2 q_k − q_{k−1}. For an L that depends on t, `system`
+// is at t_k, the time of q_k: the future segment starts there and the past one h before.
 template <LagrangianSystem System>
 auto del_step(const System& system, const DelScheme<typename System::Scalar>& scheme,
               const VectorOf<System>& q_previous, const VectorOf<System>& q_current,
               const typename System::Scalar& h) {
   using T = typename System::Scalar;
   constexpr int n = System::dimension;
-  Vector<T, n> target = p_end(system, scheme.past, q_previous, q_current, h);
+  Vector<T, n> target = depends_on_time(system)
+                            ? p_end(at_time(system, T(system_time(system) - h)), scheme.past, q_previous, q_current, h)
+                            : p_end(system, scheme.past, q_previous, q_current, h);
   Vector<T, n> q_next = 2 * q_current - q_previous;
   if constexpr (SparselyDifferentiated<System>) {
     // Sized at run time with L a tape: the Newton matrix is sparse where L's couplings are, and
@@ -73,9 +76,10 @@ auto del_step(const System& system, const DelScheme<typename System::Scalar>& sc
   return std::pair{q_next, report};
 }
 
-// q_0, ..., q_N from (q_0, q_1) by N − 1 DEL steps of size h. A step whose
-// Newton solve fails is an error naming the step and h. `after_step(k, N)`, when given,
-// is called after each step (the harness throttles it into progress lines).
+// q_0, ..., q_N from (q_0, q_1) by N − 1 DEL steps of size h, q_0 at the system's time t_0 and
+// q_k at t_0 + k·h. A step whose Newton solve fails is an error naming the step and h.
+// `after_step(k, N)`, when given, is called after each step (the harness throttles it into
+// progress lines).
 template <LagrangianSystem System>
 auto del_trajectory(const System& system, const DelScheme<typename System::Scalar>& scheme,
                     const VectorOf<System>& q0, const VectorOf<System>& q1,
@@ -86,14 +90,17 @@ auto del_trajectory(const System& system, const DelScheme<typename System::Scala
   DelTrajectory<T, n> trajectory;
   trajectory.q = {q0, q1};
   trajectory.q.reserve(steps + 1);
+  const bool timed = depends_on_time(system);
+  const T t0 = system_time(system);
   for (int k = 1; k < steps; ++k) {
-    auto [q_next, report] = del_step(system, scheme, trajectory.q[k - 1], trajectory.q[k], h);
+    auto [q_next, report] = timed ? del_step(at_time(system, T(t0 + k * h)), scheme, trajectory.q[k - 1], trajectory.q[k], h)
+                                  : del_step(system, scheme, trajectory.q[k - 1], trajectory.q[k], h);
     if (!report.converged) {
       // Where the run was when the step failed: a step that fails partway is read against the
       // state it started from, not the initial one.
       require_converged(report, "DEL step " + std::to_string(k) + " of " + std::to_string(steps) +
                                     " with h = " + to_decimal<T>(h, 17) +
-                                    " (from t = " + to_decimal<T>(T(k * h), 8) +
+                                    " (from t = " + to_decimal<T>(T(t0 + k * h), 8) +
                                     ", q = " + to_decimal_tuple<T, n>(trajectory.q[k]) + ")");
     }
     trajectory.max_iterations = std::max(trajectory.max_iterations, report.iterations);
@@ -134,7 +141,7 @@ auto next_configuration(const System& system, const QxQDiscretization<typename S
 }
 
 // q_1 from the discrete Legendre transform: p_begin[future](q_0, q_1) = p_0,
-// by Newton from q_0 + h·w_0.
+// by Newton from q_0 + h·w_0 (q_0 at the system's time).
 template <LagrangianSystem System>
 auto start_from_momentum(const System& system, const QxQDiscretization<typename System::Scalar>& future,
                          const VectorOf<System>& q0, const VectorOf<System>& w0,

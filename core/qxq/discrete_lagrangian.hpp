@@ -161,17 +161,24 @@ auto discrete_lagrangian(const System& system,
   Coordinates<S, N> velocity = make_point<S, N>(n), q_mid = make_point<S, N>(n);
   for (int i = 0; i < n; ++i) velocity[i] = (q_e[i] - q_b[i]) / h;
   const T& c = discretization.parameter;
+  // L at the point a fraction f along the segment, at its time t_b + f·h (an L that depends on t;
+  // t_b is the system's time).
+  const T t_b = system_time(system);
+  const bool timed = depends_on_time(system);
+  auto at = [&](const T& fraction, const P& q) {
+    return lagrangian_at(system, timed ? T(t_b + fraction * h) : t_b, q, velocity);
+  };
   auto on_segment = [&](const T& fraction) {
     for (int i = 0; i < n; ++i) q_mid[i] = (1 - fraction) * q_b[i] + fraction * q_e[i];
-    return system.lagrangian(q_mid, velocity);
+    return at(fraction, q_mid);
   };
   S value = S(0);
   switch (discretization.rule) {
     case QxQRule::left_rectangle:
-      value = h * system.lagrangian(q_b, velocity);
+      value = h * at(T(0), q_b);
       break;
     case QxQRule::right_rectangle:
-      value = h * system.lagrangian(q_e, velocity);
+      value = h * at(T(1), q_e);
       break;
     case QxQRule::midpoint:
       value = h * on_segment(T(1) / 2);
@@ -180,10 +187,10 @@ auto discrete_lagrangian(const System& system,
       value = h * on_segment(c);
       break;
     case QxQRule::trapezoid:
-      value = h / 2 * (system.lagrangian(q_b, velocity) + system.lagrangian(q_e, velocity));
+      value = h / 2 * (at(T(0), q_b) + at(T(1), q_e));
       break;
     case QxQRule::weighted:
-      value = h * ((1 - c) * system.lagrangian(q_b, velocity) + c * system.lagrangian(q_e, velocity));
+      value = h * ((1 - c) * at(T(0), q_b) + c * at(T(1), q_e));
       break;
     case QxQRule::expression: {
       Coordinates<S, plus(twice(N), 1)> x = make_point<S, plus(twice(N), 1)>(2 * n + 1);

@@ -57,6 +57,7 @@ template <class T>
 struct GalerkinRule {
   GalerkinSpec spec;
   std::vector<T> weights;
+  std::vector<T> nodes;                    // τ_i in [0, 1]: node i is at time t_b + τ_i·h
   std::vector<std::vector<T>> phi, dphi;  // phi[i][j] = φ_j(τ_i), dphi[i][j] = φ'_j(τ_i)
 
   explicit GalerkinRule(const GalerkinSpec& spec_) : spec(spec_) {
@@ -64,6 +65,7 @@ struct GalerkinRule {
     if (s < 1) throw std::invalid_argument("galerkin: degree must be at least 1, got " + std::to_string(s));
     const GaussLegendreRule<T> quadrature = spec.lobatto ? gauss_lobatto<T>(spec.nodes) : gauss_legendre<T>(spec.nodes);
     weights = quadrature.weights;
+    nodes = quadrature.nodes;
     for (const T& tau : quadrature.nodes) {
       std::vector<T> value(s + 1), slope(s + 1);
       for (int j = 0; j <= s; ++j) {
@@ -158,7 +160,10 @@ GalerkinAction<typename System::Scalar> galerkin_action(
       }
       v[r] /= h;
     }
-    const auto L = lagrangian_hessian(system, x, v);
+    // At the node's time t_b + τ_i·h, for an L that depends on t (t_b the system's time).
+    const auto L = depends_on_time(system)
+                       ? lagrangian_hessian(at_time(system, T(system_time(system) + rule.nodes[i] * h)), x, v)
+                       : lagrangian_hessian(system, x, v);
     T hb = h;
     hb *= rule.weights[i];
     scratch = L.value;

@@ -79,10 +79,12 @@ SparseDiscreteDerivatives<typename System::Scalar> sparse_discrete_derivatives(
     }
   } else {
     const SecondDerivativeTape<T>& tape = *system.derivatives;
-    std::vector<T> x(2 * n);
+    std::vector<T> x = lagrangian_tape_inputs(system, n);
+    const bool timed = depends_on_time(system);
     for (int i = 0; i < n; ++i) x[n + i] = (q_e[i] - q_b[i]) / h;
     for (const auto& [weight, fraction] : points) {
       for (int i = 0; i < n; ++i) x[i] = (1 - fraction) * q_b[i] + fraction * q_e[i];
+      if (timed) x[2 * n] = system_time(system) + fraction * h;  // the point's time, t_b + f·h
       const EdgePushed<T> L = lagrangian_tape(system, x.data(), second_derivatives);
       d.value += h * weight * L.value;
       for (int i = 0; i < n; ++i) {
@@ -95,6 +97,7 @@ SparseDiscreteDerivatives<typename System::Scalar> sparse_discrete_derivatives(
       const T scale = h * weight;
       for (std::size_t e = 0; e < L.hessian.size(); ++e) {
         const auto [u, t] = tape.pattern[e];
+        if (u >= 2 * n) continue;  // an entry in the time, which q_b and q_e do not move
         const int a = u % n, b = t % n;
         const T* rate_u = u < n ? on_x : on_v;
         const T* rate_t = t < n ? on_x : on_v;

@@ -24,7 +24,7 @@ auto velocity_for_momentum(const System& system, const VectorOf<System>& q,
   if constexpr (SparselyDifferentiated<System>) {
     if (system.derivatives) {
       // ∂²L/∂w² from L's sparse Hessian, factored sparse (core/numerics/newton.hpp).
-      std::vector<T> x(2 * n);
+      std::vector<T> x = lagrangian_tape_inputs(system, n);
       for (int i = 0; i < n; ++i) x[i] = q[i];
       auto report = newton_solve<T, N, Eigen::SparseMatrix<T>>(
           guess,
@@ -34,7 +34,7 @@ auto velocity_for_momentum(const System& system, const VectorOf<System>& q,
             std::vector<Eigen::Triplet<T>> mass;
             for (std::size_t e = 0; e < L.hessian.size(); ++e) {
               const auto [r, c] = system.derivatives->pattern[e];
-              if (c < n) continue;
+              if (c < n || r >= 2 * n) continue;  // not in w alone
               mass.emplace_back(r - n, c - n, L.hessian[e]);
               if (r != c) mass.emplace_back(c - n, r - n, L.hessian[e]);
             }
