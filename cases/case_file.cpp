@@ -154,6 +154,17 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
   spec.q = initial.numbers("q", spec.dimension);
   spec.w = initial.numbers("w", spec.dimension);
   initial.finish();
+  // "t0": the time of the initial state, which an L that depends on time reads.
+  if (reader.has("t0")) {
+    spec.start_time = reader.number("t0");
+    if (!(spec.formula && spec.formula->time_dependent))
+      reader.fail("t0", "is the initial time of a Lagrangian that depends on time, and this one does not (its "
+                        "formula does not use the time" +
+                            std::string(spec.formula && !spec.formula->time_name.empty()
+                                            ? " '" + spec.formula->time_name + "'"
+                                            : "") +
+                            "): leave t0 out");
+  }
   // The recording of L is held within the memory limit while it is read (record_within_limits);
   // checking the initial state needs no more (sparse, cases/system_section.cpp). What the case
   // will hold in its scalar is estimated once the rest of it is read (check_memory, below).
@@ -189,17 +200,37 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
         "long double; at 1000 the paper example's midpoint case takes 3 min and at 2000 "
         "its reference flow alone took 11 min");
   }
-  spec.discretization = read_discretization(reader.object("discretization"), spec.dimension, spec.parameters);
+  // The time's name in an L_d expression, for an L that depends on time (empty: none).
+  const std::string time_name = spec.formula && spec.formula->time_dependent ? spec.formula->time_name : "";
+  spec.discretization = read_discretization(reader.object("discretization"), spec.dimension, spec.parameters, true, time_name);
   // A program that computes in double is judged in double: "scalar" need not repeat what
   // "precision" says (another scalar, written or given as --scalar, is refused by
   // check_precision_options, naming the field).
   if (spec.discretization.process_precision == "double" && !reader.has("scalar")) spec.scalar = "double";
   if (reader.has("past_discretization"))
     spec.past_discretization =
-        read_discretization(reader.object("past_discretization"), spec.dimension, spec.parameters);
+        read_discretization(reader.object("past_discretization"), spec.dimension, spec.parameters, true, time_name);
   if (reader.has("compare_discretization"))
     spec.compare_discretization =
-        read_discretization(reader.object("compare_discretization"), spec.dimension, spec.parameters);
+        read_discretization(reader.object("compare_discretization"), spec.dimension, spec.parameters, true, time_name);
+  // An L that depends on time runs through Q × Q discrete Lagrangians, which evaluate it at their
+  // points' times, and their DEL; a TQ discretization and a one-step map do not take the time.
+  if (!time_name.empty()) {
+    const auto timed = [&](const DiscretizationSpec& d, const std::string& field) {
+      const std::string depends = "this case's Lagrangian depends on time (its formula uses '" + time_name + "'), ";
+      if (d.formalism != "qxq")
+        reader.fail(field, depends + "which vivv checks through a Q×Q discrete Lagrangian (a rule, galerkin or an "
+                                     "expression) and its DEL: a " +
+                               (d.formalism == "tq" ? std::string("TQ discretization") : "one-step map (kind \"" + d.kind + "\")") +
+                               " does not take the time");
+      if (d.recorded)
+        reader.fail(field, depends + "and an L_d registered as C++ code calls L(x, v) without a time: write it as an "
+                                     "expression, whose L(x, v, s) takes one");
+    };
+    timed(spec.discretization, "discretization");
+    if (spec.past_discretization) timed(*spec.past_discretization, "past_discretization");
+    if (spec.compare_discretization) timed(*spec.compare_discretization, "compare_discretization");
+  }
   if (reader.has("start")) spec.start = reader.one_of("start", {"reference", "momentum"});
   if (reader.has("order_tolerance")) {
     spec.order_tolerance = reader.decimal("order_tolerance");

@@ -110,6 +110,7 @@ struct CaseSpec {
   std::vector<std::string> warnings;
   std::vector<std::string> q, w;
   std::string final_time;  // "T"
+  std::string start_time = "0";  // "t0": the time of the initial state (it matters to an L that depends on time)
   std::vector<int> steps;
   std::string scalar = "mpfr";  // "double", "long double", "float128" or "mpfr"
   int digits = 60;              // MPFR only

@@ -17,7 +17,7 @@ namespace vivv::case_reading {
 // registered, another program's); allow_tq false where only a Q×Q rule may stand (a TQ pullback's qxq).
 DiscretizationSpec read_discretization(Reader reader, int dimension,
                                        const std::vector<std::pair<std::string, std::string>>& parameters,
-                                       bool allow_tq = true);
+                                       bool allow_tq = true, const std::string& time_name = "");
 // "system": {"name", "lagrangian", "coordinates", "velocities", "params"}: a system as a formula.
 void read_formula_system(Reader& system, CaseSpec& spec);
 // "system.params": a decimal for each declared parameter (name, default), the default where the

@@ -14,12 +14,13 @@ namespace {
 
 // What a discrete Lagrangian formula means, checked by recording it in long double: qb and qe
 // are vectors of `dimension` components, h a scalar, the parameters constants, and L(x, v)
-// stands for the system's Lagrangian.
+// stands for the system's Lagrangian; for one that depends on time, `time_name` is the segment's
+// start time and L(x, v, s) takes a time.
 void check_expression(const FormulaNode& tree, int dimension,
-                      const std::vector<std::pair<std::string, std::string>>& parameters) {
+                      const std::vector<std::pair<std::string, std::string>>& parameters, const std::string& time_name) {
   using T = long double;
   using V = TapeScalar<T>;
-  TapeRecording<T> recording(2 * dimension + 1);
+  TapeRecording<T> recording(2 * dimension + 2);
   FormulaScope<T, V> scope;
   FormulaValue<V> qb{{}, true, false, {}}, qe{{}, true, false, {}};
   for (int i = 0; i < dimension; ++i)
@@ -27,6 +28,8 @@ void check_expression(const FormulaNode& tree, int dimension,
   scope.names["qb"] = qb;
   scope.names["qe"] = qe;
   scope.names["h"] = FormulaValue<V>::scalar(recording.input(2 * dimension), false);
+  if (!time_name.empty()) scope.names[time_name] = FormulaValue<V>::scalar(recording.input(2 * dimension + 1), false);
+  scope.lagrangian_takes_time = !time_name.empty();
   // As the run binds them (core/formulas/formula_discretization.hpp): a parameter array's members
   // m[1], m[2], … as the family m.
   std::vector<std::string> names;
@@ -34,8 +37,8 @@ void check_expression(const FormulaNode& tree, int dimension,
   for (const auto& [name, value] : parameters) names.push_back(name), values.push_back(V(from_decimal<T>(value)));
   bind_formula_names<T, V>(scope, names, values, true);
   scope.dimension = dimension;
-  scope.lagrangian = [](const std::vector<V>& x, const std::vector<V>& v) {
-    V sum = 0;
+  scope.lagrangian = [](const std::vector<V>& x, const std::vector<V>& v, const V& time) {
+    V sum = time;
     for (std::size_t i = 0; i < x.size(); ++i) sum = sum + x[i] * v[i];
     return sum;
   };
@@ -47,7 +50,7 @@ void check_expression(const FormulaNode& tree, int dimension,
 
 DiscretizationSpec read_discretization(Reader reader, int dimension,
                                        const std::vector<std::pair<std::string, std::string>>& parameters,
-                                       bool allow_tq) {
+                                       bool allow_tq, const std::string& time_name) {
   DiscretizationSpec spec;
   if (reader.has("kind") && reader.get("kind") == "process") {
     // A one-step map in another program (protocol vivv-map/1): its command and declared order.
@@ -134,7 +137,7 @@ DiscretizationSpec read_discretization(Reader reader, int dimension,
                                 "the Gauss nodes of the quadrature of L along psi; at most 64");
     if (tq.lagrangian == "pullback") {
       tq.qxq = std::make_shared<DiscretizationSpec>(
-          read_discretization(reader.object("qxq"), dimension, parameters, false));
+          read_discretization(reader.object("qxq"), dimension, parameters, false, time_name));
       if (tq.qxq->kind == "galerkin")
         reader.fail("qxq", "a Galerkin L_d is extremized by Newton in the working precision and cannot be pulled "
                            "back through psi's derivatives; use it on Q × Q");
@@ -174,7 +177,7 @@ DiscretizationSpec read_discretization(Reader reader, int dimension,
     if (rule == QxQRule::expression) {
       spec.expression_tree = read_formula(reader, "L_d", spec.expression);
       try {
-        check_expression(*spec.expression_tree, dimension, parameters);
+        check_expression(*spec.expression_tree, dimension, parameters, time_name);
       } catch (const FormulaError& error) {
         reader.fail("L_d", describe_formula_error(spec.expression, error));
       }

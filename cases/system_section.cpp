@@ -172,6 +172,20 @@ void read_formula_system(Reader& system, CaseSpec& spec) {
   std::string text;
   definition->lagrangian = *read_formula(system, "lagrangian", text);
   definition->text = text;
+  // The time: "t" in the formula, unless a coordinate, velocity or parameter is named t, and
+  // whatever "time" names (then the formula must use it). An L that uses it depends on time.
+  if (system.has("time")) {
+    const std::string name = system.string("time");
+    claim_name(name, system.field("time"), "the time");
+    definition->time_name = name;
+    if (!formula_uses_name(definition->lagrangian, name))
+      system.fail("time", "names the time '" + name + "', which the lagrangian does not use: leave \"time\" out "
+                          "for a Lagrangian that does not depend on time");
+  } else if (role.count("t")) {
+    definition->time_name.clear();  // t is the case's own name for something else; the time has none
+  }
+  definition->time_dependent =
+      !definition->time_name.empty() && formula_uses_name(definition->lagrangian, definition->time_name);
   spec.dimension = static_cast<int>(n);
   std::vector<std::string> symmetry_texts, symmetry_fields;
   const auto parse_component = [&](const std::string& formula, const std::string& field) {
@@ -393,15 +407,18 @@ void check_initial_state(const CaseSpec& spec, const std::string& file) {
   using T = long double;
   std::vector<T> q, w;
   for (int i = 0; i < spec.dimension; ++i) q.push_back(from_decimal<T>(spec.q[i])), w.push_back(from_decimal<T>(spec.w[i]));
+  const T t0 = from_decimal<T>(spec.start_time);
   if (spec.formula) {
     try {
-      if (!spec.formula->recorded) check_formula_domain<T>(*spec.formula, q, w);
+      if (!spec.formula->recorded) check_formula_domain<T>(*spec.formula, q, w, t0);
     } catch (const FormulaError& error) {
       throw CaseError(file, "system.lagrangian", describe_formula_error(spec.formula->text, error));
     }
   }
   // A catalogue system through its formula twin, as it runs (harness/run/run_case.cpp).
-  check_regular(make_formula_system<T, any_size>(spec.formula ? *spec.formula : catalogue_twin(spec.system, spec.parameters)),
+  check_regular(at_time(make_formula_system<T, any_size>(spec.formula ? *spec.formula
+                                                                      : catalogue_twin(spec.system, spec.parameters)),
+                        t0),
                 spec, file);
 }
 

@@ -188,6 +188,8 @@ nlohmann::json case_json(const CaseResult& result) {
           {"run_seconds", run_seconds(result)},
           {"cost", run_cost(result)},
           {"claims", claims}};
+  // An L that depends on time: the initial time, as used (the run covers [t0, t0 + T]).
+  if (spec.formula && spec.formula->time_dependent) out["t0"] = as_used("t0", spec.start_time);
   if (!written.empty()) out["written"] = written;
   if (!spec.warnings.empty()) out["warnings"] = spec.warnings;
   return out;

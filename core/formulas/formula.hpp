@@ -44,6 +44,14 @@ struct FormulaNode {
   std::vector<FormulaNode> operands;
 };
 
+// Whether `node` refers to `name` (a name, not a function, a family's member or a sum's index).
+inline bool formula_uses_name(const FormulaNode& node, const std::string& name) {
+  if (node.kind == FormulaNode::Kind::name && node.text == name) return true;
+  for (const FormulaNode& operand : node.operands)
+    if (formula_uses_name(operand, name)) return true;
+  return false;
+}
+
 // The value of a formula or of a part of it: a scalar, or a vector such as qb.
 // An indexed family — x[i, k] of N bodies in d dimensions, masses m[i] — is a vector whose shape
 // has as many entries as it takes indices, its components row-major.
@@ -60,8 +68,11 @@ struct FormulaValue {
 template <class T, class V>
 struct FormulaScope {
   std::map<std::string, FormulaValue<V>> names;
-  // L(x, v), for discrete Lagrangians; empty where a formula may not call it.
-  std::function<V(const std::vector<V>&, const std::vector<V>&)> lagrangian;
+  // L(x, v), for discrete Lagrangians; empty where a formula may not call it. For a system whose L
+  // depends on time (`lagrangian_takes_time`) a formula writes L(x, v, s), s the time; otherwise
+  // the time passed is 0 and ignored.
+  std::function<V(const std::vector<V>&, const std::vector<V>&, const V&)> lagrangian;
+  bool lagrangian_takes_time = false;
   int dimension = 0;  // length of L's arguments
   // The indices the enclosing sums bind, by name (a sum binds its index while it interprets its body).
   mutable std::map<std::string, long> indices;
@@ -367,9 +378,14 @@ FormulaValue<V> interpret(const FormulaNode& node, const FormulaScope<T, V>& sco
       if (node.text == "L") {
         if (!scope.lagrangian)
           throw FormulaError(node.position, "L(x, v) can be called in a discrete Lagrangian's L_d only");
-        if (node.operands.size() != 2)
-          throw FormulaError(node.position, "L takes two vectors, L(x, v); got " + std::to_string(node.operands.size()) +
-                                                " arguments");
+        const std::size_t arguments = scope.lagrangian_takes_time ? 3 : 2;
+        if (node.operands.size() != arguments)
+          throw FormulaError(node.position,
+                             (scope.lagrangian_takes_time
+                                  ? "this system's L depends on time: L takes two vectors and the time, L(x, v, s) "
+                                    "(the midpoint rule is h*L((qb + qe)/2, (qe - qb)/h, t + h/2)); got "
+                                  : "L takes two vectors, L(x, v); got ") +
+                                 std::to_string(node.operands.size()) + " arguments");
         Value x = interpret(node.operands[0], scope), v = interpret(node.operands[1], scope);
         for (const auto* argument : {&node.operands[0], &node.operands[1]}) {
           const Value& value = argument == &node.operands[0] ? x : v;
@@ -377,7 +393,8 @@ FormulaValue<V> interpret(const FormulaNode& node, const FormulaScope<T, V>& sco
             throw FormulaError(argument->position, "expected a vector of " + std::to_string(scope.dimension) +
                                                        " components as an argument of L, got a scalar");
         }
-        return Value::scalar(scope.lagrangian(x.components, v.components), false);
+        const V time = arguments == 3 ? scalar_of(node.operands[2], "time").components[0] : V(0);
+        return Value::scalar(scope.lagrangian(x.components, v.components, time), false);
       }
       // The name first: an unknown r2(i, j) is unknown, not a function of the wrong arity.
       bool known = false;

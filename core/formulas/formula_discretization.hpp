@@ -23,20 +23,20 @@
 
 namespace vivv {
 
-// L_d(qb, qe; h) of `tree` recorded in T over the inputs (qb_1 … qb_n, qe_1 … qe_n, h).
-// Throws FormulaError for a formula without meaning.
+// L_d(qb, qe; h) of `tree` recorded in T over the inputs (qb_1 … qb_n, qe_1 … qe_n, h) and, for a
+// system whose L depends on time, the segment's start time t_b after them (named `time_name` in the
+// formula, which then calls L(x, v, s) with a time s of its own, such as t + h/2). Throws
+// FormulaError for a formula without meaning.
 template <LagrangianSystem System>
 std::shared_ptr<const Tape<typename System::Scalar>> record_discrete_lagrangian(
-    const System& system, const FormulaNode& tree, const std::vector<std::pair<std::string, std::string>>& parameters) {
+    const System& system, const FormulaNode& tree, const std::vector<std::pair<std::string, std::string>>& parameters,
+    const std::string& time_name = "t") {
   using T = typename System::Scalar;
   using V = TapeScalar<T>;
   constexpr int N = System::dimension;
   const int n = dimension_of(system);
-  if (depends_on_time(system))
-    throw FormulaError(tree.position, "an L_d expression of an L that uses t is not supported: its L(x, v) would "
-                                      "hold t fixed; use a built-in rule or Galerkin's, which evaluate L at their "
-                                      "quadrature's times");
-  TapeRecording<T> recording(2 * n + 1);
+  const bool timed = depends_on_time(system);
+  TapeRecording<T> recording(2 * n + (timed ? 2 : 1));
   FormulaScope<T, V> scope;
   FormulaValue<V> qb{{}, true, false, {}}, qe{{}, true, false, {}};
   for (int i = 0; i < n; ++i)
@@ -44,6 +44,9 @@ std::shared_ptr<const Tape<typename System::Scalar>> record_discrete_lagrangian(
   scope.names["qb"] = std::move(qb);
   scope.names["qe"] = std::move(qe);
   scope.names["h"] = FormulaValue<V>::scalar(recording.input(2 * n), false);
+  // An L that depends on time: the segment's start time t_b, input 2n + 1, under the time's name.
+  if (timed) scope.names[time_name] = FormulaValue<V>::scalar(recording.input(2 * n + 1), false);
+  scope.lagrangian_takes_time = timed;
   {
     std::vector<std::string> names;
     std::vector<V> values;
@@ -51,9 +54,12 @@ std::shared_ptr<const Tape<typename System::Scalar>> record_discrete_lagrangian(
     bind_formula_names<T, V>(scope, names, values, true);
   }
   scope.dimension = n;
-  scope.lagrangian = [&system, n](const std::vector<V>& x, const std::vector<V>& v) {
+  scope.lagrangian = [&system, n](const std::vector<V>& x, const std::vector<V>& v, const V& time) {
     Coordinates<V, N> point = make_point<V, N>(n), velocity = make_point<V, N>(n);
     for (int i = 0; i < n; ++i) point[i] = x[i], velocity[i] = v[i];
+    if constexpr (CarriesTime<System>) {
+      if (depends_on_time(system)) return V(system.lagrangian_at(time, point, velocity));
+    }
     return V(system.lagrangian(point, velocity));
   };
   const FormulaValue<V> value = interpret(tree, scope);
@@ -89,10 +95,10 @@ std::shared_ptr<const Tape<typename System::Scalar>> record_discrete_lagrangian(
 template <LagrangianSystem System>
 QxQDiscretization<typename System::Scalar> expression_discretization(
     const System& system, const std::string& text, const FormulaNode& tree,
-    const std::vector<std::pair<std::string, std::string>>& parameters, int order) {
+    const std::vector<std::pair<std::string, std::string>>& parameters, int order, const std::string& time_name = "t") {
   QxQDiscretization<typename System::Scalar> d;
   d.rule = QxQRule::expression;
-  d.expression = record_discrete_lagrangian(system, tree, parameters);
+  d.expression = record_discrete_lagrangian(system, tree, parameters, time_name);
   if constexpr (System::dimension == any_size)
     d.expression_derivatives = std::make_shared<const SecondDerivativeTape<typename System::Scalar>>(*d.expression);
   d.formula = text;

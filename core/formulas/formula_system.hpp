@@ -44,8 +44,10 @@ struct FormulaSystemDefinition {
   // sparse derivatives), counted when the case was read for the memory estimate (0: not counted:
   // one or two coordinates, or an L whose mass matrix is singular, which the reading refuses).
   std::size_t acceleration_operations = 0;
-  // L uses the time t: its tapes take t as one more input, after (q, w).
+  // L uses the time (named `time_name` in its formula, "t" unless a coordinate, velocity or parameter
+  // takes that name): its tapes take the time as one more input, after (q, w).
   bool time_dependent = false;
+  std::string time_name = "t";
 };
 
 // n: the number of coordinates, fixed (1, 2) or any_size (then the definition's, at run time).
@@ -71,10 +73,10 @@ struct FormulaSystem {
     return lagrangian_at(time, q, w);
   }
 
-  // L(q, w) at time t (which an L that does not use t ignores). t is a constant of S: jets over
-  // (q, w) do not differentiate in it.
-  template <class P>
-  auto lagrangian_at(const T& t, const P& q, const P& w) const {
+  // L(q, w) at time t (which an L that does not use t ignores). t is a constant of S — jets over
+  // (q, w) do not differentiate in it — or, on a tape recording an L_d expression, its time.
+  template <class P, class U>
+  auto lagrangian_at(const U& t, const P& q, const P& w) const {
     using S = typename P::value_type;
     count_lagrangian_evaluation();
     Coordinates<S, plus(twice(n), 1)> x = make_point<S, plus(twice(n), 1)>(2 * coordinates + (timed ? 1 : 0));
@@ -157,7 +159,7 @@ FormulaScope<T, V> system_formula_scope(const FormulaSystemDefinition& definitio
   bind_formula_names<T, V>(scope, definition.coordinates, q, false);
   bind_formula_names<T, V>(scope, definition.velocities, w, false);
   bind_formula_parameters<T, V>(scope, definition);
-  if (definition.time_dependent) scope.names["t"] = FormulaValue<V>::scalar(time, false);
+  if (definition.time_dependent) scope.names[definition.time_name] = FormulaValue<V>::scalar(time, false);
   return scope;
 }
 

@@ -193,9 +193,11 @@ auto discrete_lagrangian(const System& system,
       value = h * ((1 - c) * at(T(0), q_b) + c * at(T(1), q_e));
       break;
     case QxQRule::expression: {
-      Coordinates<S, plus(twice(N), 1)> x = make_point<S, plus(twice(N), 1)>(2 * n + 1);
+      // Its inputs (q_b, q_e, h) and, for an L that depends on time, t_b.
+      Coordinates<S, plus(twice(N), 2)> x = make_point<S, plus(twice(N), 2)>(discretization.expression->inputs);
       for (int i = 0; i < n; ++i) x[i] = q_b[i], x[n + i] = q_e[i];
       x[2 * n] = S(h);
+      if (discretization.expression->inputs == 2 * n + 2) x[2 * n + 1] = S(t_b);
       value = discretization.expression->evaluate_first(x.data());
       break;
     }

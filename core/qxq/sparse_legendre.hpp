@@ -65,15 +65,16 @@ SparseDiscreteDerivatives<typename System::Scalar> sparse_discrete_derivatives(
   const auto points = discretization.segment_points();
   if (points.empty()) {
     const SecondDerivativeTape<T>& tape = *discretization.expression_derivatives;
-    std::vector<T> x(2 * n + 1);
+    std::vector<T> x(tape.inputs);  // (q_b, q_e, h) and, for an L that depends on time, t_b
     for (int i = 0; i < n; ++i) x[i] = q_b[i], x[n + i] = q_e[i];
     x[2 * n] = h;
+    if (tape.inputs == 2 * n + 2) x[2 * n + 1] = system_time(system);
     const EdgePushed<T> L = second_derivatives ? tape.evaluate(x.data()) : tape.evaluate_gradient(x.data());
     d.value = L.value;
     for (int k = 0; k < 2 * n; ++k) d.gradient[k] = L.gradient[k];
     for (std::size_t e = 0; e < L.hessian.size(); ++e) {
       const auto [r, c] = tape.pattern[e];
-      if (r >= 2 * n) continue;  // an entry in h
+      if (r >= 2 * n) continue;  // an entry in h (or t_b)
       if (!block_only || (c < n && r >= n)) d.hessian.emplace_back(c, r, L.hessian[e]);  // (q_b, q_e) when blocked
       if (!block_only && r != c) d.hessian.emplace_back(r, c, L.hessian[e]);
     }

@@ -45,6 +45,12 @@ struct Claim {
   // states the range of that order); precision-leak judges floors, not one fitted order.
   static constexpr bool fails_by_order = true;
 
+  // Whether the claim's measurement reads L at each state's own time, so that it applies to an L
+  // that depends on time (core/lagrangian/lagrangian.hpp: at_time). A claim that does not is
+  // refused for such a case, alone, naming why — and the claims that do, which a claim that
+  // takes this up adds to the message below (tests/refused_claims/time-dependent-* pin it).
+  static constexpr bool takes_time_dependent_lagrangians = false;
+
   // No order: the claim predicts an identity, exactness or an inconsistency.
   template <LagrangianSystem System>
   static std::optional<int> theorem_order(const CaseContext<System>&) {
@@ -67,6 +73,10 @@ struct Claim {
     std::vector<DivergedRun> diverged_runs;  // in the order met
     for (;;) {
       try {
+        if (!Derived::takes_time_dependent_lagrangians && depends_on_time(context.system))
+          throw ClaimNotApplicable(std::string(Derived::id) + " is not measured for a Lagrangian that depends on time "
+                                   "(the case's L uses '" + context.spec.formula->time_name +
+                                   "'): of the claims, global-order and symplecticity are");
         Derived::measure(context, claim);
         break;
       } catch (const MapDiverged& diverged) {

@@ -18,6 +18,9 @@ namespace vivv {
 
 struct SymplecticityClaim : Claim<SymplecticityClaim> {
   static constexpr const char* id = "symplecticity";
+  // A DEL's step k is read on the system at t0 + k·h (a non-autonomous DEL map is symplectic step
+  // by step); a case with a map or a TQ evolution and such an L is refused when it is read.
+  static constexpr bool takes_time_dependent_lagrangians = true;
   static constexpr const char* series_rules[] = {"per-step-tolerance"};
   static constexpr const char* source = "Marsden–West §1.3.2";
   static constexpr const char* prediction =
@@ -114,7 +117,7 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
           jacobians.push_back(context.map->jacobian(x[k], h));
           noise.push_back(context.map->last_jacobian_unit() / context.map->jacobian_unit());
           noise_raised_tolerance = noise_raised_tolerance || noise.back() > 1;
-          scale = scale.cwiseMax(phase_size<T, N>(context, x[k].q, x[k].w, k, x.size() - 1));
+          scale = scale.cwiseMax(phase_size<T, N>(context, context.system, x[k].q, x[k].w, k, x.size() - 1));
         }
         // The noise is measured at the first step and every eighth, the largest so far standing
         // for the steps between; the largest of the whole run stands for every step of it (a step
@@ -191,15 +194,15 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
         std::vector<T> sizes;
         Vector<T, twice(N)> scale = zero_vector<T, twice(N)>(2 * n);  // each coordinate's size along the run
         for (std::size_t k = 0; k + 1 < q.size(); ++k) {
-          const auto future =
-              discrete_legendre(context.system, context.scheme.future, q[k], q[k + 1], h);
-          scale = scale.cwiseMax(
-              phase_size<T, N>(context, q[k], Vector<T, N>((q[k + 1] - q[k]) / h), k, q.size() - 1, &future.p_begin));
+          const System at_k = context.at_step(h, static_cast<long>(k));  // step k's segment starts at t0 + k·h
+          const auto future = discrete_legendre(at_k, context.scheme.future, q[k], q[k + 1], h);
+          scale = scale.cwiseMax(phase_size<T, N>(context, at_k, q[k], Vector<T, N>((q[k + 1] - q[k]) / h), k,
+                                                  q.size() - 1, &future.p_begin));
           // A matched scheme's past side is the same discretization at the same points: the same
           // numbers, not computed twice.
           const auto past =
               context.scheme.mismatched
-                  ? discrete_legendre(context.system, context.scheme.past, q[k], q[k + 1], h)
+                  ? discrete_legendre(at_k, context.scheme.past, q[k], q[k + 1], h)
                   : future;
           jacobians.push_back(del_map_jacobian<T, N>(future, past));
           sizes.push_back(nan_max({T(1), max_entry<T, N, N>(future.dp_begin_dq_b), max_entry<T, N, N>(future.dp_begin_dq_e),
@@ -210,27 +213,28 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
         // The DEL's map on (q, p) itself: q' by Newton on p_begin[future](q, q') = p from the
         // trajectory's q_{k+1}, p' = p_end[past](q, q').
         const Vector<T, N>& q_next = q[worst + 1];
+        const System at_worst = context.at_step(h, static_cast<long>(worst));
         auto step = [&](const Vector<T, twice(N)>& y) {
           const Vector<T, N> from = y.head(n), p = y.tail(n);
           Vector<T, N> to = q_next;
           auto report = newton_solve<T, N>(to, [&](const Vector<T, N>& x, Vector<T, N>& residual,
                                                    Matrix<T, N, N>& jacobian) {
-            auto legendre = discrete_legendre(context.system, context.scheme.future, from, x, h);
+            auto legendre = discrete_legendre(at_worst, context.scheme.future, from, x, h);
             residual = legendre.p_begin - p;
             jacobian = legendre.dp_begin_dq_e;
           });
           require_converged(
               report, "symplecticity's check of its Jacobian: a DEL step from a perturbed (q, p)");
           Vector<T, twice(N)> out(2 * n);
-          out << to, p_end(context.system, context.scheme.past, from, to, h);
+          out << to, p_end(at_worst, context.scheme.past, from, to, h);
           return out;
         };
         Vector<T, twice(N)> y(2 * n);
-        y << q[worst], p_begin(context.system, context.scheme.future, q[worst], q_next, h);
+        y << q[worst], p_begin(at_worst, context.scheme.future, q[worst], q_next, h);
         // The rounding of the step's outputs, which central differences cannot see when it drifts
         // with their width (core/structure/symplectic.hpp, compare_with_differences).
         const auto end = discrete_legendre(
-            context.system, context.scheme.mismatched ? context.scheme.past : context.scheme.future, q[worst], q_next, h);
+            at_worst, context.scheme.mismatched ? context.scheme.past : context.scheme.future, q[worst], q_next, h);
         const T unit = context.working_epsilon();
         const Vector<T, twice(N)> rounding = del_step_rounding<T, N, twice(N)>(end, q[worst], q_next, scale, unit);
         jacobian_checks.push_back(
@@ -326,17 +330,19 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
   // symplectic midpoint's Jacobian wrong (6.8e-8 against 7.3e-10 in long double).
   // The terms (a Hessian) at 64 steps spread over the run of `steps` steps, |p_i| at every step
   // (`p` the DEL's momentum at step k when given, else FL(q, w)).
+  // `system`: the case's, at the state's time.
   template <class T, int N, LagrangianSystem System>
-  static Vector<T, twice(N)> phase_size(const CaseContext<System>& context, const Vector<T, N>& q,
-                                     const Vector<T, N>& w, std::size_t k, std::size_t steps,
+  static Vector<T, twice(N)> phase_size(const CaseContext<System>& context, const System& system,
+                                     const Vector<T, N>& q, const Vector<T, N>& w, std::size_t k, std::size_t steps,
                                      const Vector<T, N>* p = nullptr) {
+    (void)context;
     Vector<T, twice(N)> size(2 * q.size());
     const std::size_t stride = std::max<std::size_t>(1, steps / 64);
     if (k % stride != 0 && k + 1 != steps) {
-      size << q.cwiseAbs(), (p ? *p : momentum(context.system, q, w)).cwiseAbs();
+      size << q.cwiseAbs(), (p ? *p : momentum(system, q, w)).cwiseAbs();
       return size;
     }
-    size << q.cwiseAbs(), momentum_term_sizes(context.system, q, w);
+    size << q.cwiseAbs(), momentum_term_sizes(system, q, w);
     return size;
   }
   // The exponents e_i of the balancing (core/structure/symplectic.hpp, balanced): the nearest
@@ -417,12 +423,13 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
       T worst_ratio = -1, worst_defect = 0, worst_tolerance = 0, largest_defect = 0, step_unit = 0;
       std::size_t worst = 0;
       for (int k = 0; k < steps; ++k) {
-        const Blocks future = legendre_blocks(context.system, context.scheme.future, q[k], q[k + 1], h);
+        const System at_k = context.at_step(h, k);  // step k's segment starts at t0 + k·h
+        const Blocks future = legendre_blocks(at_k, context.scheme.future, q[k], q[k + 1], h);
         std::optional<Blocks> mismatched;  // a matched scheme's past side is the future's numbers
         if (context.scheme.mismatched)
-          mismatched = legendre_blocks(context.system, context.scheme.past, q[k], q[k + 1], h);
+          mismatched = legendre_blocks(at_k, context.scheme.past, q[k], q[k + 1], h);
         const Blocks& past = mismatched ? *mismatched : future;
-        scale = scale.cwiseMax(V(phase_size<T, any_size>(context, q[k], Vector<T, any_size>((q[k + 1] - q[k]) / h),
+        scale = scale.cwiseMax(V(phase_size<T, any_size>(context, at_k, q[k], Vector<T, any_size>((q[k + 1] - q[k]) / h),
                                                          static_cast<std::size_t>(k), q.size() - 1, &future.p_begin)));
         const std::string where = "at h = " + format_scalar(h, 6) + ", step " + std::to_string(k) + " of " +
                                   std::to_string(steps);
@@ -455,20 +462,21 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
       units.push_back(worst_tolerance / ulps);
       // The judged step's J against differences of its map on (q, p) along two directions.
       const V& q_next = q[worst + 1];
-      const Blocks future = legendre_blocks(context.system, context.scheme.future, q[worst], q_next, h);
+      const System at_worst = context.at_step(h, static_cast<long>(worst));
+      const Blocks future = legendre_blocks(at_worst, context.scheme.future, q[worst], q_next, h);
       std::optional<Blocks> mismatched;
       if (context.scheme.mismatched)
-        mismatched = legendre_blocks(context.system, context.scheme.past, q[worst], q_next, h);
+        mismatched = legendre_blocks(at_worst, context.scheme.past, q[worst], q_next, h);
       const Blocks& past = mismatched ? *mismatched : future;
       const DelMapJacobian<T> jacobian(future, past);
       if (!jacobian.invertible())
         throw SolverError("at h = " + format_scalar(h, 6) + " the judged step's dp_begin/dq_end is singular");
       auto apply = [&](const V& v) { return jacobian.apply(v); };
       auto step = [&](const V& y) {
-        const V to = next_configuration(context.system, context.scheme.future, V(y.head(n)), V(y.tail(n)), q_next, h,
+        const V to = next_configuration(at_worst, context.scheme.future, V(y.head(n)), V(y.tail(n)), q_next, h,
                                         "symplecticity's check of its Jacobian: a DEL step from a perturbed (q, p)");
         V out(2 * n);
-        out << to, p_end(context.system, context.scheme.past, V(y.head(n)), to, h);
+        out << to, p_end(at_worst, context.scheme.past, V(y.head(n)), to, h);
         return out;
       };
       V y(2 * n);

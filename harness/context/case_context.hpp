@@ -62,13 +62,14 @@ QxQDiscretization<T> make_discretization(const DiscretizationSpec& spec) {
 template <LagrangianSystem System>
 QxQDiscretization<typename System::Scalar> make_discretization(
     const DiscretizationSpec& spec, const System& system,
-    const std::vector<std::pair<std::string, std::string>>& parameters) {
+    const std::vector<std::pair<std::string, std::string>>& parameters, const std::string& time_name = "t") {
   using T = typename System::Scalar;
   if (spec.formalism != "qxq" || spec.kind != "expression") return make_discretization<T>(spec);
   QxQDiscretization<T> d =
       spec.recorded
           ? recorded_discretization(system, spec.expression, *spec.recorded, spec.declared_order)
-          : expression_discretization(system, spec.expression, *spec.expression_tree, parameters, spec.declared_order);
+          : expression_discretization(system, spec.expression, *spec.expression_tree, parameters, spec.declared_order,
+                                      time_name);
   d.twin = make_twin<T>(spec.twin);
   return d;
 }
@@ -235,7 +236,8 @@ struct CaseContext {
   ReferenceOrigin reference_origin = ReferenceOrigin::made;
   Reference reference;
   State<T, N> initial;
-  T final_time;
+  T start_time;  // t0, the initial state's time: `system` is at it (at_time)
+  T final_time;  // the length of the run, T (it ends at t0 + T)
   State<T, N> final_state;  // the reference state at final_time, computed once
   // The reference's cross-check's estimate of its error at T (harness/run/run_system_impl.hpp sets
   // it before any claim runs; 0 until then): floors() rests on it where it exceeds the tolerance.
@@ -268,6 +270,7 @@ struct CaseContext {
         system(system_),
         n(dimension_of(system_)),
         reference(make_reference(spec_, system_, reference_origin)),
+        start_time(from_decimal<T>(spec_.start_time)),
         final_time(from_decimal<T>(spec_.final_time)),
         order_tolerance(std::stod(spec_.order_tolerance)),
         progress(serialized(std::move(progress_))) {
@@ -307,9 +310,10 @@ struct CaseContext {
       if (spec.past_discretization)
         tq_past = make_tq_discretization(*spec.past_discretization, system, curve_tolerance, spec.parameters);
     }
-    scheme.future = make_discretization(spec.discretization, system, spec.parameters);
+    const std::string time_name = spec.formula ? spec.formula->time_name : "t";
+    scheme.future = make_discretization(spec.discretization, system, spec.parameters, time_name);
     scheme.past = spec.past_discretization && !tq_past
-                      ? make_discretization(*spec.past_discretization, system, spec.parameters)
+                      ? make_discretization(*spec.past_discretization, system, spec.parameters, time_name)
                       : scheme.future;
     scheme.mismatched = spec.past_discretization.has_value() && !tq_past;
     // The initial state must be inside the Lagrangian's domain and regular
@@ -508,8 +512,12 @@ struct CaseContext {
     return f;
   }
 
-  // Reference state F_t(initial).
+  // Reference state F_t(initial), at t0 + t.
   State<T, N> exact(const T& t) const { return reference.advance(initial, t); }
+
+  // The system at t0 + k·h, the time of q_k in a run of steps h (for an L that depends on time;
+  // any other system is the same at every time).
+  System at_step(const T& h, long k) const { return at_time(system, T(start_time + k * h)); }
 
   // q_0, q_1 for N steps: q_1 from the reference flow (isolating the
   // method's own error) or from p_begin(q_0, q_1) = p(0).

@@ -43,6 +43,8 @@ std::string reference_key(const CaseSpec& spec) {
       {"coordinates", spec.dimension},
       {"parameters", spec.parameters},
   };
+  // An L that depends on time has a flow of its own from each initial time.
+  if (spec.formula && spec.formula->time_dependent) key["t0"] = spec.start_time;
   return key.dump();
 }
 

@@ -7,6 +7,7 @@
 //                   p(t + τ) − p(t) = ∫ ∂L/∂q dt along the reference flow: ∂L/∂w and ∂L/∂q by
 //                   differences of L values, the integral by Gauss–Legendre (8 and 16 nodes) on
 //                   the flow's states;
+//                   (for an L that depends on time, from t0 alone, L at each state's own time);
 //   DEL             at q_1 of one DEL step from the case's start, at the coarsest and the finest
 //                   h: ∂/∂q_1 [L_d^past(q_0, q_1) + L_d^future(q_1, q_2)] by differences of L_d.
 // Each residual is judged against its own terms' size: it may reach √u of it (u the larger of
@@ -80,21 +81,23 @@ DifferenceResidual<typename System::Scalar> euler_lagrange_residual(
     const System& system, const State<typename System::Scalar, System::dimension>& begin,
     const State<typename System::Scalar, System::dimension>& end,
     const std::vector<State<typename System::Scalar, System::dimension>>& nodes,
-    const std::vector<typename System::Scalar>& weights, const typename System::Scalar& tau,
-    const typename System::Scalar& u) {
+    const std::vector<typename System::Scalar>& weights, const std::vector<typename System::Scalar>& fractions,
+    const typename System::Scalar& tau, const typename System::Scalar& u) {
   using T = typename System::Scalar;
   constexpr int N = System::dimension;
   using std::abs;
   using std::max;
   using std::sqrt;
-  const auto value = [&](const Vector<T, N>& q, const Vector<T, N>& w) {
-    return T(system.lagrangian(as_point<T, N>(q), as_point<T, N>(w)));
+  // L at the state s after `begin` (begin is at the system's time; node j at fractions[j]·τ).
+  const T t = system_time(system);
+  const auto value = [&](const T& s, const Vector<T, N>& q, const Vector<T, N>& w) {
+    return T(lagrangian_at(system, T(t + s), as_point<T, N>(q), as_point<T, N>(w)));
   };
   const int n = static_cast<int>(begin.q.size());
   T value_size = 0;  // max |L| over the states differenced about
-  for (const State<T, N>* state : {&begin, &end})
-    value_size = max(value_size, T(abs(value(state->q, state->w))));
-  for (const auto& node : nodes) value_size = max(value_size, T(abs(value(node.q, node.w))));
+  value_size = max(T(abs(value(T(0), begin.q, begin.w))), T(abs(value(tau, end.q, end.w))));
+  for (std::size_t j = 0; j < nodes.size(); ++j)
+    value_size = max(value_size, T(abs(value(T(fractions[j] * tau), nodes[j].q, nodes[j].w))));
   T q_size = 0, w_size = 0;
   for (int i = 0; i < n; ++i)
     q_size = max(q_size, T(abs(begin.q[i]))), w_size = max(w_size, T(abs(begin.w[i])));
@@ -104,15 +107,17 @@ DifferenceResidual<typename System::Scalar> euler_lagrange_residual(
     // The increments only set the differences' accuracy, which halving them measures.
     const Vector<T, N> dq = difference_steps<T, N>(T(q_size / shrink), n);
     const Vector<T, N> dw = difference_steps<T, N>(T(w_size / shrink), n);
-    const auto momentum = [&](const State<T, N>& x) {
-      return central_gradient<T, N>([&](const Vector<T, N>& w) { return value(x.q, w); }, x.w, dw);
+    const auto momentum = [&](const T& s, const State<T, N>& x) {
+      return central_gradient<T, N>([&](const Vector<T, N>& w) { return value(s, x.q, w); }, x.w, dw);
     };
-    const Vector<T, N> change = momentum(end) - momentum(begin);
+    const Vector<T, N> change = momentum(tau, end) - momentum(T(0), begin);
     Vector<T, N> impulse = zero_vector<T, N>(n);
-    for (std::size_t j = 0; j < nodes.size(); ++j)
+    for (std::size_t j = 0; j < nodes.size(); ++j) {
+      const T s = fractions[j] * tau;
       impulse += (weights[j] * tau) *
-                 central_gradient<T, N>([&](const Vector<T, N>& q) { return value(q, nodes[j].w); },
+                 central_gradient<T, N>([&](const Vector<T, N>& q) { return value(s, q, nodes[j].w); },
                                         nodes[j].q, dq);
+    }
     DifferenceResidual<T> r;
     for (int i = 0; i < n; ++i) {
       r.residual = max(r.residual, T(abs(T(change[i] - impulse[i]))));
@@ -128,7 +133,7 @@ DifferenceResidual<typename System::Scalar> euler_lagrange_residual(
 }
 
 // The Euler–Lagrange residual over [t, t + τ] of the flow `advance` (advance(s) is the state at
-// t + s), with the integral by 8 and by 16 Gauss–Legendre nodes: the residual is the 16-node one,
+// t + s, t the system's time), with the integral by 8 and by 16 Gauss–Legendre nodes: the residual is the 16-node one,
 // and what the two differ by (the quadrature's own error, not L's) is allowed ten times over.
 template <LagrangianSystem System, class Advance>
 DifferenceResidual<typename System::Scalar> euler_lagrange_check(const System& system,
@@ -142,7 +147,7 @@ DifferenceResidual<typename System::Scalar> euler_lagrange_check(const System& s
     const GaussLegendreRule<T> rule = gauss_legendre<T>(m);
     std::vector<State<T, System::dimension>> nodes;
     for (const T& c : rule.nodes) nodes.push_back(advance(T(c * tau)));
-    return euler_lagrange_residual(system, begin, end, nodes, rule.weights, tau, u);
+    return euler_lagrange_residual(system, begin, end, nodes, rule.weights, rule.nodes, tau, u);
   };
   const DifferenceResidual<T> coarse = with_nodes(8);
   DifferenceResidual<T> fine = with_nodes(16);
@@ -150,12 +155,15 @@ DifferenceResidual<typename System::Scalar> euler_lagrange_check(const System& s
   return fine;
 }
 
-// ∂/∂q_1 [L_d^past(q_0, q_1) + L_d^future(q_1, q_2)] by differences of L_d values.
+// ∂/∂q_1 [L_d^past(q_0, q_1) + L_d^future(q_1, q_2)] by differences of L_d values; `past_system`
+// is at q_0's time (for an L that depends on time, the future segment starts h later).
 template <LagrangianSystem System>
 DifferenceResidual<typename System::Scalar> del_residual(
-    const System& system, const DelScheme<typename System::Scalar>& scheme,
+    const System& past_system, const DelScheme<typename System::Scalar>& scheme,
     const VectorOf<System>& q0, const VectorOf<System>& q1, const VectorOf<System>& q2,
     const typename System::Scalar& h) {
+  const System& system = past_system;
+  const System future_system = at_time(past_system, typename System::Scalar(system_time(past_system) + h));
   using T = typename System::Scalar;
   constexpr int N = System::dimension;
   using std::abs;
@@ -171,7 +179,7 @@ DifferenceResidual<typename System::Scalar> del_residual(
   // max |L_d| of the two steps differenced about q_1.
   const T value_size =
       max(T(abs(T(discrete_lagrangian(system, scheme.past, as_point<T, N>(q0), as_point<T, N>(q1), h)))),
-          T(abs(T(discrete_lagrangian(system, scheme.future, as_point<T, N>(q1), as_point<T, N>(q2), h)))));
+          T(abs(T(discrete_lagrangian(future_system, scheme.future, as_point<T, N>(q1), as_point<T, N>(q2), h)))));
   const auto residual_with = [&](const T& scale, const T& shrink) {
     const Vector<T, N> delta = difference_steps<T, N>(T(scale / shrink), n);
     const Vector<T, N> past = central_gradient<T, N>(
@@ -183,7 +191,7 @@ DifferenceResidual<typename System::Scalar> del_residual(
     const Vector<T, N> future = central_gradient<T, N>(
         [&](const Vector<T, N>& q) {
           return T(
-              discrete_lagrangian(system, scheme.future, as_point<T, N>(q), as_point<T, N>(q2), h));
+              discrete_lagrangian(future_system, scheme.future, as_point<T, N>(q), as_point<T, N>(q2), h));
         },
         q1, delta);
     DifferenceResidual<T> r;
@@ -227,6 +235,8 @@ DerivativeCheck derivative_free_check(const CaseContext<System>& context) {
   DifferenceResidual<T> worst_el;
   bool measured_el = false;
   for (const State<T, System::dimension>* at : {&context.initial, &context.final_state}) {
+    // The reference flow of an L that depends on time starts at t0 only.
+    if (at == &context.final_state && depends_on_time(context.system)) continue;
     const auto residual = euler_lagrange_check(
         context.system,
         [&](const T& s) { return s == 0 ? *at : context.reference.advance(*at, s); }, tau, u);
@@ -259,7 +269,7 @@ DerivativeCheck derivative_free_check(const CaseContext<System>& context) {
       } catch (const SolverError&) {
         continue;
       }
-      auto [q2, report] = del_step(context.system, context.scheme, q0, q1, h);
+      auto [q2, report] = del_step(context.at_step(h, 1), context.scheme, q0, q1, h);  // q_1 at t0 + h
       if (!report.converged) continue;
       const auto residual = del_residual(context.system, context.scheme, q0, q1, q2, h);
       if (!finite(residual)) continue;

@@ -75,7 +75,9 @@ void run_in_scalar(CaseSpec& spec, CaseResult& result, bool refine,
     result.implementation = formula->recorded ? "registered C++ system, recorded on a tape" : "formula";
   }
   result.formula = formula->text;
-  run_on_system(make_formula_system<T, any_size>(*formula), spec, result, refine, progress);
+  // At the initial time t0 (core/lagrangian/lagrangian.hpp: at_time), for an L that depends on time.
+  run_on_system(at_time(make_formula_system<T, any_size>(*formula), from_decimal<T>(spec.start_time)), spec, result,
+                refine, progress);
 }
 
 }  // namespace

@@ -43,7 +43,7 @@ bool first_step_converges(const CaseContext<System>& context, const typename Sys
                      context.initial, h)
           .report.converged;
     const auto [q0, q1] = context.start(context.scheme, h);
-    return del_step(context.system, context.scheme, q0, q1, h).second.converged;
+    return del_step(context.at_step(h, 1), context.scheme, q0, q1, h).second.converged;  // q_1 at t0 + h
   } catch (const SolverError&) {
     return false;
   } catch (const SingularLagrangianError&) {  // an iterate where L is not regular

@@ -6,7 +6,8 @@
 //     term ∂²L/∂w∂t of d/dt ∂L/∂w makes damped.
 // Checked: every rule that is a sum of L on the segment evaluates L at its points' times
 // t_b + f·h, in its value (against the formula written out here) and in its Legendre transforms
-// (the sparse path against dense jets); the Euler–Lagrange acceleration holds ∂²L/∂w∂t; the DEL
+// (the sparse path against dense jets); the Euler–Lagrange acceleration holds ∂²L/∂w∂t, and the
+// inverse Legendre transform leaves the entries in t out; the DEL
 // from t_0 ≠ 0 converges at the rule's order (midpoint 2, Galerkin of degree 2 on 2 Gauss nodes 4).
 // Negative control: the same run with the rules' times h/2 late — the bug of a quadrature point at
 // t_k + h/2 where t_k belongs — converges at order 1, and the order check below rejects it.
@@ -22,6 +23,7 @@
 #include "core/formulas/formula_system.hpp"
 #include "core/qxq/del_evolution.hpp"
 #include "core/qxq/discrete_lagrangian.hpp"
+#include "core/structure/energy.hpp"
 #include "references/taylor_reference.hpp"
 #include "tests/test_scalars.hpp"
 
@@ -140,6 +142,9 @@ TYPED_TEST(TimeDependentTest, EulerLagrangeAccelerationHoldsTheTimeDerivativeOfT
   EXPECT_LE(abs(T(a[0] - (-q[0] - g * w[0]))), this->working_tolerance()) << a[0];
   using std::exp;
   EXPECT_LE(abs(T(momentum(system, q, w)[0] - exp(g * t) * w[0])), this->working_tolerance());
+  // The inverse Legendre transform reads ∂²L/∂w² alone, not the entries in t: w from p = e^{γt} w.
+  const V p = V::Constant(1, T(exp(g * t) * w[0]));
+  EXPECT_LE(abs(T(velocity_for_momentum(system, q, p, V::Constant(1, T(0)))[0] - w[0])), this->working_tolerance());
 }
 
 // The order observed between N and 2N steps of the DEL from (x0, v0) at t0 over [t0, t0 + 2], with
