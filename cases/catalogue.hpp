@@ -31,8 +31,8 @@ inline const std::vector<std::string>& claim_ids() {
       "global-order",       "lagrangian-order",    "legendre-order", "twin-term-invariance",
       "mismatched-legendre", "order",              "contact-order",  "qxq-tq-equivalence",
       "existence-uniqueness", "exact-discretization", "past-future-symmetry", "symplecticity",
-      "discrete-noether",   "energy-behaviour",    "modified-energy", "precision-leak",
-      "local-order"};
+      "discrete-noether",   "energy-behaviour",    "energy-balance",  "modified-energy",
+      "precision-leak",     "local-order"};
   return ids;
 }
 
@@ -55,7 +55,7 @@ inline const std::set<std::string>& tq_claim_ids() {
 // the discrete Lagrangian a map does not have.
 inline const std::set<std::string>& map_claim_ids() {
   static const std::set<std::string> ids = {"global-order", "local-order", "symplecticity", "energy-behaviour",
-                                            "discrete-noether", "precision-leak"};
+                                            "energy-balance", "discrete-noether", "precision-leak"};
   return ids;
 }
 

@@ -50,6 +50,9 @@ struct Claim {
   // refused for such a case, alone, naming why — and the claims that do, which a claim that
   // takes this up adds to the message below (tests/refused_claims/time-dependent-* pin it).
   static constexpr bool takes_time_dependent_lagrangians = false;
+  // What measures such a case in the claim's place, said in its refusal (energy-behaviour's:
+  // energy-balance); empty for none.
+  static constexpr const char* in_place_for_time_dependent = "";
 
   // No order: the claim predicts an identity, exactness or an inconsistency.
   template <LagrangianSystem System>
@@ -76,7 +79,10 @@ struct Claim {
         if (!Derived::takes_time_dependent_lagrangians && depends_on_time(context.system))
           throw ClaimNotApplicable(std::string(Derived::id) + " is not measured for a Lagrangian that depends on time "
                                    "(the case's L uses '" + context.spec.formula->time_name +
-                                   "'): of the claims, global-order and symplecticity are");
+                                   "'): of the claims, global-order, local-order, symplecticity, discrete-noether and energy-balance "
+                                   "are" +
+                                   std::string(*Derived::in_place_for_time_dependent ? "; " : "") +
+                                   Derived::in_place_for_time_dependent);
         Derived::measure(context, claim);
         break;
       } catch (const MapDiverged& diverged) {

@@ -22,8 +22,8 @@ namespace vivv {
 // The local error of one DEL step at states x(j·T/states) of the reference orbit, j = 0 …
 // states − 1, as one series per state over the case's steps and halvings below its finest until
 // the error reaches the floor (at most `extra_halvings`), judged against order >= `order`. For an L
-// that depends on time the reference flow starts at t0 alone: one state, the initial one, and the
-// step at its own time (q(t0 + h) is q_1's).
+// that depends on time each step is at its state's own time: the DEL at q(t + h) joins the segments
+// from t and t + h, and q(t + h), q(t + 2h) are the orbit's (CaseContext::exact_after).
 template <LagrangianSystem System>
 std::vector<Series> del_local_error_series(const CaseContext<System>& context, int order, int states = 4,
                                            int extra_halvings = 80) {
@@ -33,8 +33,6 @@ std::vector<Series> del_local_error_series(const CaseContext<System>& context, i
   std::vector<T> steps = context.steps();
   for (int k = 0; k < extra_halvings; ++k) steps.push_back(steps.back() / 2);
   std::vector<Series> all;
-  const bool timed = depends_on_time(context.system);
-  if (timed) states = 1;
   for (int j = 0; j < states; ++j) {
     const T t = context.final_time * T(j) / T(states);
     const State<T, N> x = j == 0 ? context.initial : context.reference.advance(context.initial, t);
@@ -44,9 +42,11 @@ std::vector<Series> del_local_error_series(const CaseContext<System>& context, i
     const auto floor_at = [&](const T& h) { return MapLocalOrderClaim::floor_at(context, scale, h); };
     for (const T& h : steps) {
       context.report("global-order: one DEL step from x(" + format_scalar(t, 4) + ") at h = " + to_decimal<T>(h, 6));
-      const Vector<T, N> q1 = context.reference.advance(x, h).q, q2 = context.reference.advance(x, T(2 * h)).q;
-      const auto [q_next, report] = timed ? del_step(context.at_step(h, 1), context.scheme, x.q, q1, h)
-                                          : del_step(context.system, context.scheme, x.q, q1, h);
+      const Vector<T, N> q1 = context.exact_after(x, t, h).q, q2 = context.exact_after(x, t, T(2 * h)).q;
+      // del_step takes the system at q1's time: its future segment starts there, its past one h before.
+      const auto [q_next, report] = depends_on_time(context.system)
+                                        ? del_step(context.at(T(t + h)), context.scheme, x.q, q1, h)
+                                        : del_step(context.system, context.scheme, x.q, q1, h);
       // A step too large for Newton from this state (h = 2 on an elastic pendulum) starts the
       // series at a smaller h; one that fails below a converged one ends it.
       if (!report.converged) {

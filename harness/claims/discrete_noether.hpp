@@ -7,6 +7,8 @@
 // drifts at O(h²) per unit time: the claim's negative control.
 #pragma once
 
+#include <tuple>
+
 #include "core/structure/noether.hpp"
 #include "harness/claims/claim.hpp"
 #include "harness/claims/global_order.hpp"
@@ -15,6 +17,9 @@ namespace vivv {
 
 struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
   static constexpr const char* id = "discrete-noether";
+  // A symmetry of L at every t: J_k from p_k at t_k (trajectory_momenta), L's invariance checked at
+  // each state's own time.
+  static constexpr bool takes_time_dependent_lagrangians = true;
   static constexpr const char* series_rules[] = {"per-step-tolerance"};
   static constexpr const char* source = "Marsden–West §1.3.3 (discrete Noether theorem)";
   static constexpr const char* prediction =
@@ -74,7 +79,8 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
                     "sqrt or log of a negative number, a division by zero)");
           if (k == 0) first = J;
           T terms = max_norm<T, N>(p[k]);
-          if (k % stride == 0 || k == steps - 1) terms = nan_max(terms, momentum_terms(context, q[k], w[k]));
+          if (k % stride == 0 || k == steps - 1)
+            terms = nan_max(terms, momentum_terms(context.at_step(h, k), q[k], w[k]));
           size = nan_max(size, T(terms * max_norm<T, N>(xi)));
           if (abs(T(J - first)) > drift) drift = abs(T(J - first)), worst_step = k;
         }
@@ -137,11 +143,10 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
  private:
   // The size of the terms that p = ∂L/∂w is a sum of, at (q, w): |p|, |M·w| and |∂L/∂w − M·w|.
   template <LagrangianSystem System>
-  static typename System::Scalar momentum_terms(const CaseContext<System>& context,
-                                                const VectorOf<System>& q,
+  static typename System::Scalar momentum_terms(const System& system, const VectorOf<System>& q,
                                                 const VectorOf<System>& w) {
     using T = typename System::Scalar;
-    return max_norm<T, System::dimension>(momentum_term_sizes(context.system, q, w));
+    return max_norm<T, System::dimension>(momentum_term_sizes(system, q, w));
   }
 
   // A drift beyond `ulps` units that does not fall with h (the finest step's is at least the
@@ -225,15 +230,16 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
   static void check_invariance(const CaseContext<System>& context) {
     using T = typename System::Scalar;
     const T half = context.final_time / 2;
-    const std::vector<std::pair<std::string, State<T, System::dimension>>> states = {
-        {"the initial state", context.initial},
-        {"t = T/2 (" + format_scalar(half, 6) + ")", context.exact(half)},
-        {"t = T", context.final_state}};
-    for (const auto& [where, state] : states) check_invariance_at(context, state, where);
+    // Each state with the system at its own time (for an L that depends on time, invariance at every t).
+    const std::vector<std::tuple<std::string, State<T, System::dimension>, T>> states = {
+        {"the initial state", context.initial, T(0)},
+        {"t = T/2 (" + format_scalar(half, 6) + ")", context.exact(half), half},
+        {"t = T", context.final_state, context.final_time}};
+    for (const auto& [where, state, t] : states) check_invariance_at(context, context.at(t), state, where);
   }
 
   template <LagrangianSystem System>
-  static void check_invariance_at(const CaseContext<System>& context,
+  static void check_invariance_at(const CaseContext<System>& context, const System& system,
                                   const State<typename System::Scalar, System::dimension>& state,
                                   const std::string& where) {
     using T = typename System::Scalar;
@@ -243,7 +249,7 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
     const Vector<T, N>& w = state.w;
     const Vector<T, N> xi = symmetry_generator(context.system, q);
     require_finite(context, xi, q, "at " + where + " of the reference flow");
-    const auto d = lagrangian_derivatives(context.system, q, w);
+    const auto d = lagrangian_derivatives(system, q, w);
     const int n = static_cast<int>(q.size());
     Vector<T, N> along = zero_vector<T, N>(n);  // Dξ(q)·w
     const T speed = max_norm<T, N>(w);

@@ -462,6 +462,9 @@ Series energy_size_series(const CaseContext<System>& context,
 
 struct EnergyBehaviourClaim : Claim<EnergyBehaviourClaim> {
   static constexpr const char* id = "energy-behaviour";
+  static constexpr const char* in_place_for_time_dependent =
+      "such an L's energy is not conserved (dE/dt = −∂L/∂t): energy-balance measures its change against "
+      "the exact −∫ ∂L/∂t dt";
   static constexpr const char* series_rules[] = {"energy-drift", "order", "floor", "none"};
   static constexpr const char* source = "Hairer–Lubich–Wanner ch. IX (backward error analysis); Marsden–West §1.3.4";
   static constexpr const char* prediction =

@@ -19,6 +19,8 @@ namespace vivv {
 
 struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
   static constexpr const char* id = "local-order";
+  // A DEL map's step from a state of the orbit at its own time t0 + t_j (CaseContext::at, exact_after).
+  static constexpr bool takes_time_dependent_lagrangians = true;
   static constexpr const char* series_rules[] = {"order", "floor", "none"};
   static constexpr const char* source = "Hairer–Nørsett–Wanner I, Thm II.3.4; Marsden–West Thm 2.3.1";
   static constexpr const char* prediction =
@@ -68,16 +70,19 @@ struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
     for (int j = 0; j < states; ++j) {
       const T t = context.final_time * T(j) / T(states);
       const State<T, N> x = j == 0 ? context.initial : context.reference.advance(context.initial, t);
-      const Vector<T, N> p = momentum(context.system, x.q, x.w);
+      const bool timed = depends_on_time(context.system);
+      const System at_x = timed ? context.at(t) : context.system;  // the system at x's time
+      const Vector<T, N> p = momentum(at_x, x.q, x.w);
       T scale = nan_max(max_norm<T, N>(x.q), max_norm<T, N>(p));
       std::vector<T> error, used_h;
       std::vector<std::vector<double>> by_coordinate;  // per h (as used_h): each coordinate's error
       std::vector<double> last_by_coordinate;
       const auto measure = [&](const T& h) -> std::optional<T> {
         context.report("local-order: one step from x(" + format_scalar(t, 4) + ") at h = " + to_decimal<T>(h, 6));
-        const State<T, N> exact = context.reference.advance(x, h);
-        const auto [q1, p1] = one_step(context, x, h);
-        const Vector<T, N> p_exact = momentum(context.system, exact.q, exact.w);
+        const State<T, N> exact = context.exact_after(x, t, h);
+        const auto [q1, p1] = one_step(context, at_x, x, h);
+        const Vector<T, N> p_exact = timed ? momentum(context.at(T(t + h)), exact.q, exact.w)
+                                           : momentum(context.system, exact.q, exact.w);
         const T e = nan_max(max_norm<T, N>(Vector<T, N>(q1 - exact.q)), max_norm<T, N>(Vector<T, N>(p1 - p_exact)));
         using std::abs, std::isfinite;
         if (!isfinite(e)) return std::nullopt;
@@ -215,17 +220,18 @@ struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
     return context.scheme.mismatched ? "the mismatched DEL map" : "the DEL map of L_d";
   }
 
-  // One step of the case's map from the state x at h, on (q, p).
+  // One step of the case's map from the state x at h, on (q, p); `system` is the case's at x's time
+  // (the DEL map's segment starts there).
   template <LagrangianSystem System>
   static std::pair<VectorOf<System>, VectorOf<System>>
-  one_step(const CaseContext<System>& context, const State<typename System::Scalar, System::dimension>& x,
-           const typename System::Scalar& h) {
+  one_step(const CaseContext<System>& context, const System& system,
+           const State<typename System::Scalar, System::dimension>& x, const typename System::Scalar& h) {
     if (context.map) {
       const auto next = context.map->step(x, h);
       return {next.q, momentum(context.system, next.q, next.w)};
     }
-    const auto q1 = start_from_momentum(context.system, context.scheme.future, x.q, x.w, h);
-    return {q1, p_end(context.system, context.scheme.past, x.q, q1, h)};
+    const auto q1 = start_from_momentum(system, context.scheme.future, x.q, x.w, h);
+    return {q1, p_end(system, context.scheme.past, x.q, q1, h)};
   }
 
  public:

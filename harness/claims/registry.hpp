@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "harness/claims/discrete_noether.hpp"
+#include "harness/claims/energy_balance.hpp"
 #include "harness/claims/energy_behaviour.hpp"
 #include "harness/claims/exact_discretization.hpp"
 #include "harness/claims/global_order.hpp"
@@ -29,7 +30,7 @@ using ClaimRegistry =
     std::tuple<GlobalOrderClaim, LagrangianOrderClaim, LegendreOrderClaim, TwinTermInvarianceClaim,
                MismatchedLegendreClaim, LocalOrderClaim, ContactOrderClaim, QxQTQEquivalenceClaim,
                ExistenceUniquenessClaim, ExactDiscretizationClaim, PastFutureSymmetryClaim,
-               SymplecticityClaim, DiscreteNoetherClaim, EnergyBehaviourClaim,
+               SymplecticityClaim, DiscreteNoetherClaim, EnergyBehaviourClaim, EnergyBalanceClaim,
                ModifiedEnergyClaim, PrecisionLeakClaim, MapLocalOrderClaim>;
 
 struct ClaimInfo {

@@ -47,6 +47,7 @@ std::string claim_work(const CaseSpec& spec, const std::string& id, double sweep
     return sweep + ": the generating form over the blocks' nonzeros and 4 probe pairs a step (about one DEL step a step)";
   }
   if (id == "energy-behaviour") return sweep + ": the energy at every state";
+  if (id == "energy-balance") return sweep + ": the energy at its first and last states";
   if (id == "discrete-noether") return sweep + ": the momentum map of the symmetry at every state";
   if (id == "modified-energy") return sweep + ": the modified energy at every state";
   return "as docs/claims.md describes for " + id;

@@ -515,6 +515,16 @@ struct CaseContext {
   // Reference state F_t(initial), at t0 + t.
   State<T, N> exact(const T& t) const { return reference.advance(initial, t); }
 
+  // The exact state s after x, where x is the reference orbit's state at t0 + t (x = exact(t)):
+  // for an L that depends on time the orbit itself at t0 + t + s, since the reference flow starts
+  // at t0 (the flow from x at its own time is the same orbit); any other system's F_s(x).
+  State<T, N> exact_after(const State<T, N>& x, const T& t, const T& s) const {
+    return depends_on_time(system) ? reference.advance(initial, T(t + s)) : reference.advance(x, s);
+  }
+
+  // The system at t0 + t (an autonomous one at any t).
+  System at(const T& t) const { return at_time(system, T(start_time + t)); }
+
   // The system at t0 + k·h, the time of q_k in a run of steps h (for an L that depends on time;
   // any other system is the same at every time).
   System at_step(const T& h, long k) const { return at_time(system, T(start_time + k * h)); }
