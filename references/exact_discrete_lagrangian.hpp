@@ -12,6 +12,10 @@
 // Taylor step of the dense output of the solution, whose integrand is then
 // analytic well beyond the step. The shooting converges for h below the
 // first conjugate time of the solution; the result says whether it did.
+//
+// For an L that depends on t the segment starts at the system's time t_b (at_time): the flows
+// start there, the action integrates L(t_b + τ, q(τ), q'(τ)) over τ ∈ [0, h], and p_end is read at
+// t_b + h.
 #pragma once
 
 #include <memory>
@@ -101,10 +105,8 @@ class ExactDiscreteLagrangian {
       T b = step.start + step.length;
       if (h > 0 ? b > h : b < h) b = h;
       result.value += integrate(rule_, a, b, [&](const T& t) {
-        std::vector<T> y = TaylorTrajectory<T>::evaluate(step, T(t - a));
-        Coordinates<T, N> q = make_point<T, N>(n), w = make_point<T, N>(n);
-        for (int i = 0; i < n; ++i) q[i] = y[i], w[i] = y[n + i];
-        return T(system_.lagrangian(q, w));
+        const State<T, N> y = flow_.state_of(TaylorTrajectory<T>::evaluate(step, T(t - a)));
+        return T(lagrangian_at(system_, T(system_time(system_) + t), as_point<T, N>(y.q), as_point<T, N>(y.w)));
       });
       if (b == h) break;
     }
@@ -112,7 +114,7 @@ class ExactDiscreteLagrangian {
     result.w_begin = start.w;
     result.w_end = end.w;
     result.p_begin = momentum(system_, q_begin, start.w);
-    result.p_end = momentum(system_, q_end, end.w);
+    result.p_end = momentum(at_time(system_, T(system_time(system_) + h)), q_end, end.w);
     return result;
   }
 

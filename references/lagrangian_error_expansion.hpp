@@ -10,6 +10,10 @@
 // coefficient E_{r+1} is a *signed* prediction that lagrangian-order compares
 // with the measured L_d − L_d^E, so a swapped weight (β ↔ 1 − β) or a swapped
 // interval, which keep every order, is seen.
+//
+// For an L that depends on t the segment starts at the system's time t_b: the solution is that of
+// (q, t) with t'' = 0 (time_extended_euler_lagrange_tape), the action integrates L at t_b + τ, and
+// each rule's point f is at t_b + f·h — the time itself a power series t_b + h·f.
 #pragma once
 
 #include <array>
@@ -39,17 +43,44 @@ std::vector<T> difference_coefficients(const PowerSeries<T>& discrete, const Pow
   return out;
 }
 
+// L(q, w) in power series at the time t (a power series too): an autonomous system's L at any t.
+template <LagrangianSystem System, class P>
+P lagrangian_series_at(const System& system, const P& t, const Coordinates<P, System::dimension>& q,
+                       const Coordinates<P, System::dimension>& w) {
+  if constexpr (CarriesTime<System>) {
+    if (system.timed) return P(system.lagrangian_at(t, q, w));
+  }
+  return P(system.lagrangian(q, w));
+}
+
+// t_b + f·h as a power series in h, of `length` coefficients (t_b the system's time).
+template <LagrangianSystem System>
+PowerSeries<typename System::Scalar> time_series(const System& system, const typename System::Scalar& fraction,
+                                                 int length) {
+  PowerSeries<typename System::Scalar> t(system_time(system), length);
+  if (length > 1) t[1] = fraction;
+  return t;
+}
+
 // q(h) = Σ_k q_k h^k, its first `length` coefficients, of the Euler–Lagrange solution through
-// (q0, w0) (Taylor-mode AD of the system's L, core/lagrangian/taylor_curve.hpp).
+// (q0, w0) (Taylor-mode AD of the system's L, core/lagrangian/taylor_curve.hpp); for an L that
+// depends on t, of (q, t) through (q0, t_b) with t' = 1, the time dropped.
 template <LagrangianSystem System>
 Coordinates<PowerSeries<typename System::Scalar>, System::dimension> solution_series(
     const System& system, const VectorOf<System>& q0, const VectorOf<System>& w0, int length) {
   using T = typename System::Scalar;
   constexpr int N = System::dimension;
   const int n = static_cast<int>(q0.size());
-  const Tape<T> tape = euler_lagrange_tape(system);
-  std::vector<T> x0(n), v0(n);
+  const bool timed = depends_on_time(system);
+  const Tape<T> tape = [&] {
+    if constexpr (SparselyDifferentiated<System>) {
+      if (timed) return time_extended_euler_lagrange_tape(system);
+    }
+    return euler_lagrange_tape(system);
+  }();
+  std::vector<T> x0(n + (timed ? 1 : 0)), v0(n + (timed ? 1 : 0));
   for (int i = 0; i < n; ++i) x0[i] = q0[i], v0[i] = w0[i];
+  if (timed) x0[n] = system_time(system), v0[n] = 1;
   const auto solution = solution_taylor_coefficients<T, T>(tape, x0, v0, length);
   Coordinates<PowerSeries<T>, N> q = make_point<PowerSeries<T>, N>(n);
   for (int i = 0; i < n; ++i)
@@ -79,7 +110,8 @@ std::vector<typename System::Scalar> expression_error_expansion(
   const int n = static_cast<int>(q0.size());
   for (int length = terms + 4; length <= 4 * terms + 16; length *= 2) {
     const Coordinates<P, N> q = solution_series(system, q0, w0, length);
-    Coordinates<K, plus(twice(N), 1)> x = make_point<K, plus(twice(N), 1)>(2 * n + 1);
+    // Its inputs (q_b, q_e, h) and, for an L that depends on time, t_b (a constant).
+    Coordinates<K, plus(twice(N), 2)> x = make_point<K, plus(twice(N), 2)>(d.expression->inputs);
     Coordinates<P, N> w = make_point<P, N>(n);
     for (int i = 0; i < n; ++i) {
       w[i] = q[i].derivative();
@@ -89,9 +121,10 @@ std::vector<typename System::Scalar> expression_error_expansion(
     P step(T(0), length);
     step[1] = 1;
     x[2 * n] = K(step, length);
+    if (d.expression->inputs == 2 * n + 2) x[2 * n + 1] = K(P(system_time(system), length), length);
     const K discrete = d.expression->evaluate_first(x.data());
     if (discrete.known < terms) continue;
-    const P along = system.lagrangian(q, w);
+    const P along = lagrangian_series_at(system, time_series(system, T(1), length), q, w);
     P action(T(0), length);
     for (int k = 1; k < length; ++k) action[k] = along[k - 1] / k;
     P sum = discrete.series;
@@ -124,27 +157,30 @@ std::vector<typename System::Scalar> lagrangian_error_expansion(
     quotient[i] = (q[i] - q_begin[i]).shifted(-1);
   }
   // ∫₀ʰ L dt: the series of L along the solution, integrated term by term.
-  const P along = system.lagrangian(q, w);
+  const P along = lagrangian_series_at(system, time_series(system, T(1), terms), q, w);
   P action(T(0), terms);
   for (int k = 1; k < terms; ++k) action[k] = along[k - 1] / k;
-  // L_d, rule by rule from its formula.
+  // L_d, rule by rule from its formula; L at the segment's point f is at t_b + f·h.
+  const auto at = [&](const T& fraction, const Coordinates<P, N>& point) {
+    return lagrangian_series_at(system, time_series(system, fraction, terms), point, quotient);
+  };
   auto on_segment = [&](const T& fraction) {
     Coordinates<P, N> point = make_point<P, N>(n);
     for (int i = 0; i < n; ++i) point[i] = (1 - fraction) * q_begin[i] + fraction * q[i];
-    return system.lagrangian(point, quotient);
+    return at(fraction, point);
   };
   const T& c = d.parameter;
   P per_step;  // L_d / h
   switch (d.rule) {
-    case QxQRule::left_rectangle: per_step = system.lagrangian(q_begin, quotient); break;
-    case QxQRule::right_rectangle: per_step = system.lagrangian(q, quotient); break;
+    case QxQRule::left_rectangle: per_step = at(T(0), q_begin); break;
+    case QxQRule::right_rectangle: per_step = at(T(1), q); break;
     case QxQRule::midpoint: per_step = on_segment(T(1) / 2); break;
     case QxQRule::alpha: per_step = on_segment(c); break;
     case QxQRule::trapezoid:
-      per_step = (system.lagrangian(q_begin, quotient) + system.lagrangian(q, quotient)) / 2;
+      per_step = (at(T(0), q_begin) + at(T(1), q)) / 2;
       break;
     case QxQRule::weighted:
-      per_step = (1 - c) * system.lagrangian(q_begin, quotient) + c * system.lagrangian(q, quotient);
+      per_step = (1 - c) * at(T(0), q_begin) + c * at(T(1), q);
       break;
     case QxQRule::expression:
       return expression_error_expansion(system, d, q0, w0, terms, sizes);

@@ -79,8 +79,9 @@ struct Claim {
         if (!Derived::takes_time_dependent_lagrangians && depends_on_time(context.system))
           throw ClaimNotApplicable(std::string(Derived::id) + " is not measured for a Lagrangian that depends on time "
                                    "(the case's L uses '" + context.spec.formula->time_name +
-                                   "'): of the claims, global-order, local-order, symplecticity, discrete-noether and energy-balance "
-                                   "are" +
+                                   "'): of the claims, global-order, local-order, lagrangian-order, legendre-order, "
+                                   "twin-term-invariance, symplecticity, discrete-noether, energy-balance and "
+                                   "precision-leak are" +
                                    std::string(*Derived::in_place_for_time_dependent ? "; " : "") +
                                    Derived::in_place_for_time_dependent);
         Derived::measure(context, claim);

@@ -5,6 +5,10 @@
 //                     are O(h^r) — not the O(h^{r+1}) of Marsden–West Thm 2.3.1 (2) —
 //                     with equal leading coefficients: their difference is O(h^{r+1})
 //                     (paper §2.3).
+//
+// For an L that depends on time the segment is [t0, t0 + h], on the case's system at t0 (its L_d and
+// L_d^E start there), p(h) is read at t0 + h, and the exact coefficients from each state of the orbit
+// are those of the segment starting at that state's time.
 #pragma once
 
 #include "harness/claims/claim.hpp"
@@ -119,10 +123,10 @@ void add_exact_coefficients(ClaimResult& claim, const CaseContext<System>& conte
   for (int j = 0; j < states; ++j) {
     const T t = context.final_time * T(j) / T(states);
     const State<T, N> x = j == 0 ? context.initial : context.reference.advance(context.initial, t);
+    const System system = context.at(t);  // the segment from x starts at x's time
     std::vector<T> sizes;
     try {
-      expansions.push_back(
-          lagrangian_error_expansion(context.system, context.scheme.future, x.q, x.w, r + 1, &sizes));
+      expansions.push_back(lagrangian_error_expansion(system, context.scheme.future, x.q, x.w, r + 1, &sizes));
     } catch (const std::domain_error& e) {
       claim.evidence["exact_coefficients"] = "not compared: at t = " + format_scalar(t, 4) + ", " + e.what();
       return;
@@ -130,10 +134,10 @@ void add_exact_coefficients(ClaimResult& claim, const CaseContext<System>& conte
     times.push_back(t);
     for (int k = 0; k <= r; ++k) size[k] = nan_max(size[k], sizes[k]);
     if (r >= 1) {
-      const Vector<T, N> p = momentum(context.system, x.q, x.w);
+      const Vector<T, N> p = momentum(system, x.q, x.w);
       T pw = 0;
       for (int i = 0; i < static_cast<int>(p.size()); ++i) pw += p[i] * x.w[i];
-      size[1] = nan_max(size[1], nan_max(abs(pw), abs(T(pw - context.system.lagrangian(as_point<T, N>(x.q), as_point<T, N>(x.w))))));
+      size[1] = nan_max(size[1], nan_max(abs(pw), abs(T(pw - system.lagrangian(as_point<T, N>(x.q), as_point<T, N>(x.w))))));
     }
   }
   const std::vector<T> steps = context.steps();
@@ -192,6 +196,8 @@ void add_exact_coefficients(ClaimResult& claim, const CaseContext<System>& conte
 
 struct LagrangianOrderClaim : Claim<LagrangianOrderClaim> {
   static constexpr const char* id = "lagrangian-order";
+  // L_d^E and the expansions on the segment [t0, t0 + h] (and from each state at its own time).
+  static constexpr bool takes_time_dependent_lagrangians = true;
   static constexpr const char* series_rules[] = {
       "order", "floor", "none", "signed-coefficient", "exact-coefficients"};
   static constexpr const char* source = "Marsden–West Def. 2.3.1; paper §2.2";
@@ -252,6 +258,7 @@ struct LagrangianOrderClaim : Claim<LagrangianOrderClaim> {
 
 struct LegendreOrderClaim : Claim<LegendreOrderClaim> {
   static constexpr const char* id = "legendre-order";
+  static constexpr bool takes_time_dependent_lagrangians = true;  // p(h) read at t0 + h
   static constexpr const char* series_rules[] = {"order", "floor", "none"};
   static constexpr const char* source = "Marsden–West Thm 2.3.1 (2) vs paper §2.3";
   static constexpr const char* prediction =
@@ -277,7 +284,7 @@ struct LegendreOrderClaim : Claim<LegendreOrderClaim> {
       State<T, N> v = context.exact(h);
       auto legendre =
           discrete_legendre(context.system, context.scheme.future, context.initial.q, v.q, h);
-      Vector<T, N> end_residual = legendre.p_end - momentum(context.system, v.q, v.w);
+      Vector<T, N> end_residual = legendre.p_end - momentum(context.at(h), v.q, v.w);
       Vector<T, N> begin_residual = legendre.p_begin - p_start;
       end_error.push_back(max_norm<T, N>(end_residual));
       begin_error.push_back(max_norm<T, N>(begin_residual));

@@ -33,11 +33,15 @@ namespace vivv {
 // formula twin, as every case runs it (harness/run/run_case.cpp).
 template <class T, int N>
 FormulaSystem<T, N> system_at_current_precision(const CaseSpec& spec, const FormulaSystem<T, N>&) {
-  return make_formula_system<T, N>(spec.formula ? *spec.formula : catalogue_twin(spec.system, spec.parameters));
+  // At the case's t0, as run_case puts the case's system (an L that depends on time).
+  return at_time(make_formula_system<T, N>(spec.formula ? *spec.formula : catalogue_twin(spec.system, spec.parameters)),
+                 from_decimal<T>(spec.start_time));
 }
 
 struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {
   static constexpr const char* id = "precision-leak";
+  // One DEL step from x0 on [t0, t0 + h], p(h) read at t0 + h; the 2d-digit system is at t0 too.
+  static constexpr bool takes_time_dependent_lagrangians = true;
   static constexpr const char* series_rules[] = {"none"};
   static constexpr const char* source = "round-off analysis of a one-step method (Higham, Accuracy and Stability "
                                         "of Numerical Algorithms, ch. 2)";
@@ -304,7 +308,7 @@ struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {
       q1 = start_from_momentum(system, context.scheme.future, x0.q, x0.w, h);
       p1 = p_end(system, context.scheme.future, x0.q, q1, h);
     }
-    const Vector<T, N> p0 = momentum(system, x0.q, x0.w), p_exact = momentum(system, exact.q, exact.w);
+    const Vector<T, N> p0 = momentum(system, x0.q, x0.w), p_exact = momentum(context.at(h), exact.q, exact.w);
     const T error = nan_max(max_norm<T, N>(q1 - exact.q), max_norm<T, N>(p1 - p_exact));
     const T motion = nan_max(max_norm<T, N>(exact.q - x0.q), max_norm<T, N>(p_exact - p0));
     // One rounding of the answer, relative to the motion: ε·max(|q1|, |p1|)/motion.

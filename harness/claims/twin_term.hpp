@@ -57,6 +57,8 @@ TwinMeasurement<T> twin_measurement(int N, const T& h, const T& gap, const T& sc
 
 struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
   static constexpr const char* id = "twin-term-invariance";
+  // The DEL runs step at their own times; the Legendre shift is read on the last segment's system.
+  static constexpr bool takes_time_dependent_lagrangians = true;
   static constexpr const char* series_rules[] = {"per-step-tolerance"};
   static constexpr const char* source = "paper §2.2–2.3";
   static constexpr const char* prediction =
@@ -104,8 +106,9 @@ struct TwinTermInvarianceClaim : Claim<TwinTermInvarianceClaim> {
       }
       // The Legendre shift at the run's last segment: exact up to a few roundings.
       const auto& q = without.trajectories[i]->q;
-      auto shifted = discrete_legendre(context.system, context.scheme.future, q[steps - 1], q[steps], h);
-      auto plain_legendre = discrete_legendre(context.system, plain.future, q[steps - 1], q[steps], h);
+      const System last = context.at_step(h, steps - 1);  // the last segment starts at t0 + (N − 1)·h
+      auto shifted = discrete_legendre(last, context.scheme.future, q[steps - 1], q[steps], h);
+      auto plain_legendre = discrete_legendre(last, plain.future, q[steps - 1], q[steps], h);
       measured.push_back(twin_measurement(steps, h, gap, scale, shifted.p_begin, plain_legendre.p_begin,
                                           shifted.p_end, plain_legendre.p_end, twin));
     }

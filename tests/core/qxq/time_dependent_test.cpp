@@ -8,7 +8,9 @@
 // t_b + f·h, in its value (against the formula written out here) and in its Legendre transforms
 // (the sparse path against dense jets); the Euler–Lagrange acceleration holds ∂²L/∂w∂t, and the
 // inverse Legendre transform leaves the entries in t out; the DEL
-// from t_0 ≠ 0 converges at the rule's order (midpoint 2, Galerkin of degree 2 on 2 Gauss nodes 4).
+// from t_0 ≠ 0 converges at the rule's order (midpoint 2, Galerkin of degree 2 on 2 Gauss nodes 4);
+// the exact discrete Lagrangian and the expansion of L_d − L_d^E in h start at the segment's time
+// (against the closed forms' action and momenta; the rule with its time at t_b shows E_2 ≠ 0).
 // Negative control: the same run with the rules' times h/2 late — the bug of a quadrature point at
 // t_k + h/2 where t_k belongs — converges at order 1, and the order check below rejects it.
 #include <gtest/gtest.h>
@@ -24,6 +26,10 @@
 #include "core/qxq/del_evolution.hpp"
 #include "core/qxq/discrete_lagrangian.hpp"
 #include "core/structure/energy.hpp"
+#include "core/formulas/formula_discretization.hpp"
+#include "core/numerics/quadrature.hpp"
+#include "references/exact_discrete_lagrangian.hpp"
+#include "references/lagrangian_error_expansion.hpp"
 #include "references/taylor_reference.hpp"
 #include "tests/test_scalars.hpp"
 
@@ -215,6 +221,65 @@ TYPED_TEST(TimeDependentTest, TaylorReferenceFollowsTheClosedFormsFromTheSystems
       EXPECT_LE(reference.estimate_error(start, T(5)), reference.tolerance());
     }
   }
+}
+
+// The exact discrete Lagrangian of an L that depends on t starts its segment at the system's time
+// t_b: on the driven oscillator, L_d^E(q_b, q_e; h) against the action of the closed-form solution
+// through q_b at t_b and q_e at t_b + h (its own Gauss–Legendre quadrature of 24 nodes), and the end
+// momenta against that solution's; on the Caldirola–Kanai oscillator p = e^{γt} v, so p_end read at
+// t_b in place of t_b + h is off by e^{γh}. And the expansion of L_d − L_d^E in h (lagrangian-order's
+// exact coefficients) starts there: the midpoint rule's E_0 … E_2 vanish and its E_3 is the measured
+// (L_d − L_d^E)/h³ in the limit; the rule with its time at t_b (an expression) has E_2 ≠ 0.
+TYPED_TEST(TimeDependentTest, ExactDiscreteLagrangianAndItsExpansionStartAtTheSegmentsTime) {
+  using T = TypeParam;
+  using V = Vector<T, any_size>;
+  using std::abs, std::cos, std::exp, std::pow, std::sin;
+  const T t_b = T(7) / 10, q_b = T(1) / 2, w_b = T(-1) / 5;
+  const T tolerance = testing::reference_tolerance<T>();
+  const auto driven_system = at_time(make_formula_system<T, any_size>(driven()), t_b);
+  for (const T& h : {T(1) / 2, T(1) / 8}) {
+    const T q_e = driven_solution(t_b, q_b, w_b, T(t_b + h));
+    ExactDiscreteLagrangian<FormulaSystem<T, any_size>> exact(driven_system, tolerance);
+    const auto value = exact(V::Constant(1, q_b), V::Constant(1, q_e), h);
+    ASSERT_TRUE(value.converged);
+    const auto quadrature = gauss_legendre<T>(24);
+    const T action = integrate(quadrature, t_b, T(t_b + h), [&](const T& t) {
+      const auto [x, v] = driven_motion(t_b, q_b, w_b, t);
+      return T(v * v / 2 - x * x / 2 + x * cos(T(3) / 2 * t) / 2);
+    });
+    const T bound = 1000 * tolerance;
+    EXPECT_LE(abs(T(value.value - action)), bound) << "h " << h;
+    EXPECT_LE(abs(T(value.p_begin[0] - w_b)), bound) << "h " << h;
+    EXPECT_LE(abs(T(value.p_end[0] - driven_motion(t_b, q_b, w_b, T(t_b + h)).second)), bound) << "h " << h;
+  }
+  const auto damped = at_time(make_formula_system<T, any_size>(caldirola_kanai()), t_b);
+  const T h = T(1) / 4;
+  const auto [x_e, v_e] = caldirola_kanai_motion(t_b, q_b, w_b, T(t_b + h));
+  ExactDiscreteLagrangian<FormulaSystem<T, any_size>> exact(damped, tolerance);
+  const auto value = exact(V::Constant(1, q_b), V::Constant(1, x_e), h);
+  ASSERT_TRUE(value.converged);
+  const T g = T(3) / 10;
+  EXPECT_LE(abs(T(value.p_begin[0] - exp(g * t_b) * w_b)), 1000 * tolerance);
+  EXPECT_LE(abs(T(value.p_end[0] - exp(g * (t_b + h)) * v_e)), 1000 * tolerance);
+
+  // The expansion, from (q_b, w_b) at t_b.
+  const V q0 = V::Constant(1, q_b), w0 = V::Constant(1, w_b);
+  const auto midpoint = lagrangian_error_expansion(driven_system, rule<T>(QxQRule::midpoint), q0, w0, 4);
+  for (int k = 0; k <= 2; ++k) EXPECT_LE(abs(midpoint[k]), 100 * epsilon<T>()) << "E_" << k;
+  const T small = T(1) / 64;
+  const T q_small = driven_solution(t_b, q_b, w_b, T(t_b + small));
+  ExactDiscreteLagrangian<FormulaSystem<T, any_size>> exact_small(driven_system, tolerance);
+  const T measured = (discrete_lagrangian(driven_system, rule<T>(QxQRule::midpoint), as_point<T, any_size>(q0),
+                                          as_point<T, any_size>(V::Constant(1, q_small)), small) -
+                      exact_small(q0, V::Constant(1, q_small), small).value) / pow(small, 3);
+  // (L_d − L_d^E)/h³ = E_3 + O(h).
+  EXPECT_LE(abs(T(measured - midpoint[3])), abs(midpoint[3]) / 10 + T(small)) << measured << " vs " << midpoint[3];
+  const std::string late = "h*L((qb + qe)/2, (qe - qb)/h, t)";
+  const auto at_start = lagrangian_error_expansion(
+      driven_system, expression_discretization(driven_system, late, parse_formula(late), {}, 2), q0, w0, 4);
+  EXPECT_LE(abs(at_start[0]), 100 * epsilon<T>());
+  EXPECT_LE(abs(at_start[1]), 100 * epsilon<T>());
+  EXPECT_GT(abs(at_start[2]), T(1) / 100) << "the time at t_b where t_b + h/2 belongs shows in E_2";
 }
 
 }  // namespace
