@@ -25,6 +25,7 @@
 #include "core/lagrangian/euler_lagrange_tape.hpp"
 #include "core/autodiff/power_series.hpp"
 #include "core/lagrangian/taylor_curve.hpp"
+#include "references/taylor_flow.hpp"
 
 namespace vivv {
 
@@ -72,12 +73,7 @@ Coordinates<PowerSeries<typename System::Scalar>, System::dimension> solution_se
   constexpr int N = System::dimension;
   const int n = static_cast<int>(q0.size());
   const bool timed = depends_on_time(system);
-  const Tape<T> tape = [&] {
-    if constexpr (SparselyDifferentiated<System>) {
-      if (timed) return time_extended_euler_lagrange_tape(system);
-    }
-    return euler_lagrange_tape(system);
-  }();
+  const Tape<T> tape = flow_tape(system);  // of (q, t) for an L that depends on t
   std::vector<T> x0(n + (timed ? 1 : 0)), v0(n + (timed ? 1 : 0));
   for (int i = 0; i < n; ++i) x0[i] = q0[i], v0[i] = w0[i];
   if (timed) x0[n] = system_time(system), v0[n] = 1;
