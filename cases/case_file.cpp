@@ -214,13 +214,15 @@ CaseSpec parse_case(const nlohmann::json& json, const std::string& file) {
     spec.compare_discretization =
         read_discretization(reader.object("compare_discretization"), spec.dimension, spec.parameters, true, time_name);
   // An L that depends on time runs through Q × Q discrete Lagrangians, which evaluate it at their
-  // points' times, and their DEL; a TQ discretization and a one-step map do not take the time.
+  // points' times, and their DEL, or through a program's map, whose requests carry the time; a TQ
+  // discretization and a map registered in C++ do not take the time.
   if (!time_name.empty()) {
     const auto timed = [&](const DiscretizationSpec& d, const std::string& field) {
       const std::string depends = "this case's Lagrangian depends on time (its formula uses '" + time_name + "'), ";
-      if (d.formalism != "qxq")
+      if (d.formalism != "qxq" && d.kind != "process")
         reader.fail(field, depends + "which vivv checks through a Q×Q discrete Lagrangian (a rule, galerkin or an "
-                                     "expression) and its DEL: a " +
+                                     "expression) and its DEL, or through a program's map (kind \"process\", whose "
+                                     "requests carry the time): a " +
                                (d.formalism == "tq" ? std::string("TQ discretization") : "one-step map (kind \"" + d.kind + "\")") +
                                " does not take the time");
       if (d.recorded)

@@ -50,6 +50,13 @@ struct OneStepMap {
   virtual int order() const = 0;
   // Φ_h(x) on (q, w).
   virtual State<T, n> step(const State<T, n>& x, const T& h) const = 0;
+  // The time of the states the next calls start from (a map of an L that depends on time, whose
+  // step from x depends on x's time as well as on x): t is the absolute time, t0 + the time along
+  // the run, and steps() and trajectory() advance it by h a step. A map that takes the time (a
+  // program: "t" in its requests, docs/process-protocol.md) keeps it for the calls that follow;
+  // an autonomous map ignores it. Whoever steps a map of a timed L says the time before each call
+  // from a state of another time (harness/claims: map_at).
+  virtual void set_time(const T& t) const { (void)t; }
   // ∂(q', p')/∂(q, p) at x.
   virtual Matrix<T, twice(n), twice(n)> jacobian(const State<T, n>& x, const T& h) const = 0;
   // ∂(q', p')/∂(q, p) at x applied to each of `directions` (vectors on (q, p)): J·v, for checks that

@@ -101,7 +101,8 @@ struct DiscreteNoetherClaim : Claim<DiscreteNoetherClaim> {
         visit_map_trajectories(context, "discrete-noether: momentum map", [&](const T& h, const auto& x) {
           std::vector<Vector<T, N>> q, p, w;
           for (std::size_t k = 0; k + 1 < x.size(); ++k)
-            q.push_back(x[k].q), p.push_back(momentum(context.system, x[k].q, x[k].w)), w.push_back(x[k].w);
+            q.push_back(x[k].q), p.push_back(momentum(context.at_step(h, static_cast<long>(k)), x[k].q, x[k].w)),
+                w.push_back(x[k].w);
           judge(h, q, p, w);
         });
         claim.evidence["momentum_map"] = "J_k = FL(q_k, w_k) · xi(q_k) along the states of " + context.map->name() +

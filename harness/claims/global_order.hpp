@@ -28,12 +28,12 @@ std::vector<State<typename System::Scalar, System::dimension>> map_trajectory(co
   std::vector<State<T, System::dimension>> x{context.initial};
   // Every state at once where the map can (a program that took up "trajectory": a batch a
   // request); a run it cannot finish so is taken a step at a time below, which says where it left.
-  if (auto states = context.map->trajectory(context.initial, h, N)) {
+  if (auto states = context.map_at(T(0)).trajectory(context.initial, h, N)) {
     x.insert(x.end(), states->begin(), states->end());
     return x;
   }
   for (int k = 0; k < N; ++k) {
-    x.push_back(context.map->step(x.back(), h));
+    x.push_back(context.map_at(T(k * h)).step(x.back(), h));
     for (int i = 0; i < static_cast<int>(x.back().q.size()); ++i)
       if (!isfinite(x.back().q[i]) || !isfinite(x.back().w[i]))
         throw CaseError(context.spec.file, "steps",
@@ -98,7 +98,7 @@ State<typename System::Scalar, System::dimension> map_end_state(const CaseContex
   if (const auto kept = context.map_ends.find(N); kept != context.map_ends.end()) return kept->second;
   const CostMeter meter;
   const std::optional<long> reported_before = context.map->reported_evaluations();
-  const auto end = context.map->steps(context.initial, h, N);
+  const auto end = context.map_at(typename System::Scalar(0)).steps(context.initial, h, N);
   if (!end) return shared_map_trajectory(context, h, N)->back();
   record_map_run_cost(context, N, meter, reported_before);
   return context.map_ends.emplace(N, *end).first->second;

@@ -227,8 +227,11 @@ struct MapLocalOrderClaim : Claim<MapLocalOrderClaim> {
   one_step(const CaseContext<System>& context, const System& system,
            const State<typename System::Scalar, System::dimension>& x, const typename System::Scalar& h) {
     if (context.map) {
+      // The map's clock at x's time (the system's: t0 + t); its answer's momentum at t + h.
+      const typename System::Scalar t = system_time(system);
+      context.map->set_time(t);
       const auto next = context.map->step(x, h);
-      return {next.q, momentum(context.system, next.q, next.w)};
+      return {next.q, momentum(at_time(system, typename System::Scalar(t + h)), next.q, next.w)};
     }
     const auto q1 = start_from_momentum(system, context.scheme.future, x.q, x.w, h);
     return {q1, p_end(system, context.scheme.past, x.q, q1, h)};

@@ -105,6 +105,7 @@ void measure_map_by_probes(const CaseContext<System>& context, const std::vector
       std::vector<V> vectors;
       for (int i = 0; i < 2 * map_probe_fresh_pairs; ++i) vectors.push_back(draw.next<T>(2 * n));
       vectors.insert(vectors.end(), carried.begin(), carried.end());
+      context.map_at(T(k * h));  // the map's clock at x_k's time (an L that depends on time)
       const std::vector<V> images = apply(x[k], h, vectors);
       Probed step{0, map.last_jacobian_unit(), 1};
       for (std::size_t v = 0; v < vectors.size(); ++v)
@@ -155,19 +156,24 @@ void measure_map_by_probes(const CaseContext<System>& context, const std::vector
     units.push_back(worst_tolerance / Claim::ulps);
     // The judged step's products against differences of the map on (q, p) along two directions:
     // w from p by the inverse Legendre transform, one step, p' = FL(q', w').
+    // (For an L that depends on time, p at the step's start is FL at t0 + worst·h, p' at h later;
+    // the map's clock stays at the step's start for every call below.)
     const State<T, any_size>& at = x[worst];
+    const System before = context.at_step(h, static_cast<long>(worst)),
+                 after = context.at_step(h, static_cast<long>(worst) + 1);
+    context.map_at(T(worst * h));
     auto step = [&](const V& y) {
       State<T, any_size> from;
       from.q = y.head(n);
-      from.w = velocity_for_momentum(context.system, from.q, V(y.tail(n)), at.w);
+      from.w = velocity_for_momentum(before, from.q, V(y.tail(n)), at.w);
       const State<T, any_size> to = map.step(from, h);
       V out(2 * n);
-      out << to.q, momentum(context.system, to.q, to.w);
+      out << to.q, momentum(after, to.q, to.w);
       return out;
     };
     auto product = [&](const V& v) { return map.jacobian_along(at, h, {v}).front(); };
     V y(2 * n);
-    y << at.q, momentum(context.system, at.q, at.w);
+    y << at.q, momentum(before, at.q, at.w);
     std::optional<V> rounding;  // a double program's answers' measured noise, as the dense check has it
     if (const std::optional<T> noise_r = map.answer_noise(at, h)) {
       rounding = V(2 * n);

@@ -298,8 +298,8 @@ struct PrecisionLeakClaim : Claim<PrecisionLeakClaim> {
     const State<T, N> exact = context.exact(h);
     Vector<T, N> q1, p1;
     if (context.map) {
-      const State<T, N> x1 = context.map->step(x0, h);
-      q1 = x1.q, p1 = momentum(system, x1.q, x1.w);
+      const State<T, N> x1 = context.map_at(T(0)).step(x0, h);
+      q1 = x1.q, p1 = momentum(context.at(h), x1.q, x1.w);
     } else if (context.tq) {
       const auto step = tq_step(system, *context.tq, x0, h);
       require_converged(step.report, "precision-leak: TQ step with h = " + to_decimal<T>(h, 17));

@@ -114,7 +114,7 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
         std::vector<T> noise;  // each Jacobian's rounding in units of jacobian_unit(): 1, or measured
         Vector<T, twice(N)> scale = zero_vector<T, twice(N)>(2 * n);  // each coordinate's size along the run
         for (std::size_t k = 0; k + 1 < x.size(); ++k) {
-          jacobians.push_back(context.map->jacobian(x[k], h));
+          jacobians.push_back(context.map_at(T(k * h)).jacobian(x[k], h));
           noise.push_back(context.map->last_jacobian_unit() / context.map->jacobian_unit());
           noise_raised_tolerance = noise_raised_tolerance || noise.back() > 1;
           scale = scale.cwiseMax(phase_size<T, N>(context, context.system, x[k].q, x[k].w, k, x.size() - 1));
@@ -133,25 +133,27 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
         units.push_back(judge<T, N>(check, h, jacobians, noise, context.map->jacobian_unit(), exponents, worst));
         // The map on (q, p) itself: w from p by the inverse Legendre transform, one step, p' =
         // FL(q', w').
+        // (For an L that depends on time, p at the step's start is FL at t0 + worst·h, p' at h later.)
         const State<T, N>& at = x[worst];
+        const System before = context.at_step(h, static_cast<long>(worst)),
+                     after = context.at_step(h, static_cast<long>(worst) + 1);
         auto step = [&](const Vector<T, twice(N)>& y) {
           State<T, N> from;
           from.q = y.head(n);
-          from.w = velocity_for_momentum(context.system, from.q, Vector<T, N>(y.tail(n)),
-                                         at.w);
-          const State<T, N> to = context.map->step(from, h);
+          from.w = velocity_for_momentum(before, from.q, Vector<T, N>(y.tail(n)), at.w);
+          const State<T, N> to = context.map_at(T(worst * h)).step(from, h);
           Vector<T, twice(N)> out(2 * n);
-          out << to.q, momentum(context.system, to.q, to.w);
+          out << to.q, momentum(after, to.q, to.w);
           return out;
         };
         Vector<T, twice(N)> y(2 * n);
-        y << at.q, momentum(context.system, at.q, at.w);
+        y << at.q, momentum(before, at.q, at.w);
         // A double program's answers carry the noise it measured (answer_noise, a spread r): its
         // differences may differ from its Jacobian by 2·3r/δ more (3r bounds a rounding of spread r;
         // a Verlet whose force kept 32 bits missed by 1.1e-7 against the 1.5e-8 its widths' changes
         // allowed, by chance of its quantized rounding).
         std::optional<Vector<T, twice(N)>> rounding;
-        if (const std::optional<T> noise_r = context.map->answer_noise(at, h)) {
+        if (const std::optional<T> noise_r = context.map_at(T(worst * h)).answer_noise(at, h)) {
           rounding = Vector<T, twice(N)>(2 * n);
           rounding->setConstant(T(3 * *noise_r));
         }

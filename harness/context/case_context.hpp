@@ -529,6 +529,14 @@ struct CaseContext {
   // any other system is the same at every time).
   System at_step(const T& h, long k) const { return at_time(system, T(start_time + k * h)); }
 
+  // The case's map with its clock at t0 + t, for the calls that follow from a state at that time
+  // (OneStepMap::set_time: a program of an L that depends on time is sent the time in its
+  // requests; any other map ignores it).
+  const OneStepMap<T, N>& map_at(const T& t) const {
+    map->set_time(T(start_time + t));
+    return *map;
+  }
+
   // q_0, q_1 for N steps: q_1 from the reference flow (isolating the
   // method's own error) or from p_begin(q_0, q_1) = p(0).
   std::pair<Vector<T, N>, Vector<T, N>> start(const DelScheme<T>& with, const T& h) const {

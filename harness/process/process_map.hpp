@@ -61,7 +61,22 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
         digits_(double_program ? std::numeric_limits<double>::max_digits10 : round_trip_digits<T>()),
         orbit_size_(orbit_size),
         bound_(to_decimal<T>(scale_bound(orbit_size))),
-        process_(start(digits_)) {}
+        timed_(depends_on_time(system_)),
+        time_(system_time(system_)),
+        process_(start(digits_)) {
+    if (timed_) process_->set_time(to_decimal<T>(time_));
+  }
+
+  // For an L that depends on time: the time of the states the next requests start from, sent as
+  // their "t" (docs/process-protocol.md), and the time at which vivv converts between w and p — the
+  // request's p = FL(t, q, w), the answer's w from its p at t + h. Any other L ignores it.
+  void set_time(const T& t) const override {
+    if (!timed_) return;
+    time_ = t;
+    const std::string text = to_decimal<T>(t);
+    process_->set_time(text);
+    if (fine_) fine_->set_time(text);
+  }
 
   // The orbit's size once more of it is known (the reference's state at T: the program is greeted
   // before the reference flow runs, so that one that declines or fails says so in seconds).
@@ -125,6 +140,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     const std::vector<std::string> y = point(x);
     std::string key = to_decimal<T>(h);
     for (const std::string& v : y) key += " " + v;
+    if (timed_) key += " t " + to_decimal<T>(time_);
     if (noise_key_ != key) {
       PrecisionGuard guard(digits_ + 30);
       noise_ = from_decimal<T>(to_decimal<R>(noise_near(key.substr(0, key.find(' ')), y, h)));
@@ -144,7 +160,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
     State<T, N> next{Vector<T, N>(n), Vector<T, N>(n)};
     Vector<T, N> p_next(n);
     for (int i = 0; i < n; ++i) next.q[i] = y[i], p_next[i] = y[n + i];
-    next.w = velocity_for_momentum(system_, next.q, p_next, x.w);
+    next.w = at_system_time(T(time_ + h), [&](const System& at) { return velocity_for_momentum(at, next.q, p_next, x.w); });
     last_ = {next, p_next};
     count_evaluations(answer);
     return next;
@@ -314,8 +330,10 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   // many as take about a second at the last one's pace (at most 16 times as many, a tenth of
   // --process-timeout at most): `request(from, asked)` takes `asked` steps from `from` and gives
   // their end state, or nullopt, which ends the run with nullopt.
+  // For an L that depends on time, each request starts at the time of its first state, t + (steps
+  // so far)·h, t the time set before the run (set_time), which is the time again after it.
   template <class Request>
-  std::optional<State<T, N>> paced_batches(const State<T, N>& x, long count, const Request& request,
+  std::optional<State<T, N>> paced_batches(const State<T, N>& x, const T& h, long count, const Request& request,
                                            long at_most = std::numeric_limits<long>::max()) const;
 
   // One request for `count` steps from x with every state answered (extensions "steps" and
@@ -518,7 +536,14 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   // trip through w.
   Vector<T, N> momentum_at(const State<T, N>& x) const {
     if (last_ && last_->first.q == x.q && last_->first.w == x.w) return last_->second;
-    return momentum(system_, x.q, x.w);
+    return at_system_time(time_, [&](const System& at) { return momentum(at, x.q, x.w); });
+  }
+
+  // f(the system at t): the case's system itself where L does not depend on time (no copy).
+  template <class F>
+  auto at_system_time(const T& t, const F& f) const {
+    if (timed_) return f(at_time(system_, t));
+    return f(system_);
   }
 
   std::unique_ptr<MapProcess> start(int digits) const {
@@ -541,6 +566,8 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
   int digits_;
   T orbit_size_;
   std::string bound_;  // 10^divergence_digits times the orbit's size, a decimal
+  bool timed_;         // L depends on time: requests carry "t", and FL is taken at their times
+  mutable T time_;     // the time of the state the next request starts from (set_time)
   std::unique_ptr<MapProcess> process_;
   mutable std::unique_ptr<MapProcess> fine_;  // started by the first Jacobian
   mutable long jacobians_ = 0;                // Jacobians by the second instance so far

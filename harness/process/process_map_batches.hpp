@@ -19,7 +19,7 @@ template <LagrangianSystem System>
 auto ProcessMap<System>::steps(const State<T, N>& x, const T& h, long count) const
     -> std::optional<State<T, N>> {
   if (!process_->uses_extension(steps_extension) || count < 2) return std::nullopt;
-  return paced_batches(x, count, [&](const State<T, N>& from, long asked) {
+  return paced_batches(x, h, count, [&](const State<T, N>& from, long asked) {
     return batched_request(from, h, asked);
   });
 }
@@ -41,7 +41,7 @@ auto ProcessMap<System>::trajectory(const State<T, N>& x, const T& h, long count
   const long fitting =
       std::max(1L, static_cast<long>(std::min(line_states, 8.0 * 1024 * 1024 / per_state)));
   const auto end = paced_batches(
-      x, count,
+      x, h, count,
       [&](const State<T, N>& from, long asked) { return batched_states(from, h, asked, states); },
       fitting);
   if (!end) return std::nullopt;
@@ -50,13 +50,16 @@ auto ProcessMap<System>::trajectory(const State<T, N>& x, const T& h, long count
 
 template <LagrangianSystem System>
 template <class Request>
-auto ProcessMap<System>::paced_batches(const State<T, N>& x, long count, const Request& request,
+auto ProcessMap<System>::paced_batches(const State<T, N>& x, const T& h, long count, const Request& request,
                                        long at_most) const -> std::optional<State<T, N>> {
   State<T, N> state = x;
+  const T start = time_;
   for (long left = count; left > 0;) {
     const long asked = std::min({left, batch_, at_most});
     const auto started = std::chrono::steady_clock::now();
+    set_time(T(start + (count - left) * h));
     const std::optional<State<T, N>> next = request(state, asked);
+    set_time(start);
     if (!next) return std::nullopt;
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -113,8 +116,10 @@ auto ProcessMap<System>::batched_states(const State<T, N>& x, const T& h, long c
           process_->fail_answer(
               "its answer's last state in \"trajectory\" is not its \"q\" and \"p\" (entry " +
               std::to_string(i) + " differs)");
-    try {  // from the state before's w, a step away
-      next.w = velocity_for_momentum(system_, next.q, p_end, previous.w);
+    try {  // from the state before's w, a step away; FL at the state's time
+      next.w = at_system_time(T(time_ + (k + 1) * h), [&](const System& at) {
+        return velocity_for_momentum(at, next.q, p_end, previous.w);
+      });
     } catch (const SolverError&) {
       return std::nullopt;
     }
@@ -156,7 +161,9 @@ auto ProcessMap<System>::batched_request(const State<T, N>& x, const T& h, long 
     if (!(abs(end.q[i]) <= bound && abs(p_end[i]) <= bound)) return std::nullopt;
   }
   try {  // from x's w, steps away: where Newton does not converge from there, step by step
-    end.w = velocity_for_momentum(system_, end.q, p_end, x.w);
+    end.w = at_system_time(T(time_ + count * h), [&](const System& at) {
+      return velocity_for_momentum(at, end.q, p_end, x.w);
+    });
   } catch (const SolverError&) {
     return std::nullopt;
   }

@@ -73,6 +73,11 @@ class MapProcess {
                 const std::function<void(const nlohmann::json&)>& read);
   static constexpr std::size_t pipelined_requests = 8;
 
+  // The time "t" every step's request (one with an "h") carries from now on, a decimal: the time
+  // of the request's first state, for a case whose Lagrangian depends on time (empty: none is
+  // sent, as for any other case). A request that names its own "t" keeps it.
+  void set_time(std::string t) { time_ = std::move(t); }
+
   // "'python3 step.py'" for messages.
   std::string name() const;
   // Requests answered so far (the greeting not counted).
@@ -92,6 +97,8 @@ class MapProcess {
 
  private:
   void greet(const nlohmann::json& greeting);
+  // `message` with the time set_time gave, where it is a step's request without a "t" of its own.
+  std::string line_of(const nlohmann::json& message) const;
   // The answer `line` to `request_name` as JSON, nested at most maximum_answer_depth levels;
   // fail() otherwise.
   nlohmann::json parse_answer(const std::string& line, const std::string& request_name);
@@ -123,6 +130,7 @@ class MapProcess {
   std::string token_;  // descendant_token=<vivv's pid>-<count>, in the program's environment
   long requests_ = 0;
   std::vector<std::string> extensions_;  // the offered extensions its greeting's answer named
+  std::string time_;                     // the "t" of its step requests (set_time), or none
 };
 
 // What every run does with a case whose discretization is a process (kind "process") before

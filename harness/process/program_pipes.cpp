@@ -21,8 +21,15 @@ namespace vivv {
 using program_internals::Clock, program_internals::error_text, program_internals::milliseconds_until,
     program_internals::shortened, program_internals::stderr_kept;
 
+std::string MapProcess::line_of(const nlohmann::json& message) const {
+  if (time_.empty() || !message.is_object() || !message.contains("h") || message.contains("t")) return message.dump();
+  nlohmann::json timed = message;
+  timed["t"] = time_;
+  return timed.dump();
+}
+
 nlohmann::json MapProcess::request(const nlohmann::json& message) {
-  const std::string line = message.dump();
+  const std::string line = line_of(message);
   last_request_ = "request " + std::to_string(requests_ + 1) + " " + shortened(line);
   send(line, last_request_);
   const std::string reply = receive(last_request_);
@@ -54,7 +61,7 @@ void MapProcess::requests(const std::function<std::optional<nlohmann::json>()>& 
           made_all = true;
           break;
         }
-        const std::string line = message->dump();
+        const std::string line = line_of(*message);
         names.push_back("request " + std::to_string(requests_ + 1 + static_cast<long>(names.size())) + " " +
                         shortened(line));
         outgoing += line + "\n";

@@ -323,3 +323,23 @@ def test_pipeline_is_taken_up_and_requests_sent_ahead_are_answered_in_order():
     assert child.wait(timeout=10) == 0
     for request, answer in zip(requests, answers):
         assert answer == talk(euler, [greeting(17), request], arithmetic="float")[1]
+
+
+def test_a_step_with_a_parameter_t_is_given_the_time_of_each_state():
+    """A request's "t" (a Lagrangian that depends on time) reaches a step(h, q, p, t): at t for one
+    step, at t, t + h, … for the k steps of one request; a step without t is called as before, and
+    a step with t=0 keeps its default where a request carries no time."""
+    times = []
+
+    def timed(h, q, p, t=0):
+        times.append(t)
+        return [q[0] + h * p[0]], [p[0] + h * t]
+
+    answers = talk(timed, [greeting(17, ["steps"]), {"h": "0.25", "t": "2", "q": ["1"], "p": ["0"]},
+                           {"h": "0.25", "t": "3", "q": ["1"], "p": ["0"], "steps": 3},
+                           {"h": "0.25", "q": ["1"], "p": ["0"]}], arithmetic="float")
+    assert times == [2.0, 3.0, 3.25, 3.5, 0]
+    assert float(answers[1]["p"][0]) == 0.5
+    assert float(answers[2]["p"][0]) == pytest.approx(0.25 * (3 + 3.25 + 3.5))
+    untimed = talk(euler, [greeting(17), {"h": "0.1", "t": "5", "q": ["1"], "p": ["0.5"]}], arithmetic="float")
+    assert float(untimed[1]["q"][0]) == pytest.approx(1.05)

@@ -7,7 +7,9 @@
              requests sent before their answers are read,
              {"protocol": "vivv-map/1", "extensions": ["jacobian", "evaluations", "steps", "trajectory", "pipeline"]}
              (or {"error": "why not"})
-    vivv:    {"h": "...", "q": ["...", ...], "p": ["...", ...]}   (+ "jacobian": true where it reads one,
+    vivv:    {"h": "...", "q": ["...", ...], "p": ["...", ...]}   (+ "t": the first state's time, for an L
+                                                                   that depends on time,
+                                                                   + "jacobian": true where it reads one,
                                                                    + "steps": k for k steps, when agreed,
                                                                    + "trajectory": true for every state)
     program: {"q": [...], "p": [...]}   (+ "jacobian": [[...], ...] when agreed and asked for,
@@ -198,6 +200,11 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, evaluations=N
           output=None):
     """Answer vivv's requests with step(h, q, p) -> (q', p') until vivv closes the input.
 
+    A step (and a jacobian) with a parameter named t is called step(h, q, p, t=t) with the time of
+    the state it steps from, for a case whose Lagrangian depends on time (vivv's requests carry
+    "t"); the k steps of one request are at t, t + h, …, t + (k − 1)h. Without such a parameter it is
+    called as before, and a request's "t" is not read.
+
     arithmetic: "mpmath" (mp.dps = D), "decimal" (the context's precision = D), "float" or
     "numpy" (IEEE double; the case declares "precision": "double"; q and p are NumPy arrays
     with "numpy"). jacobian(h, q, p), if given, returns the 2n x 2n matrix d(q', p')/d(q, p)
@@ -218,6 +225,7 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, evaluations=N
     that asks for it is answered with every state of its k steps (the claims that read them all:
     energy-behaviour, discrete-noether, symplecticity). batch=False declines both: every step crosses.
     """
+    step_takes_time, jacobian_takes_time = _takes_time(step), jacobian is not None and _takes_time(jacobian)
     input = sys.stdin if input is None else input
     output = _protocol_channel() if output is None else output
     numbers = arithmetic_named(arithmetic)
@@ -253,6 +261,7 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, evaluations=N
         h = numbers.number(request["h"])
         q = numbers.vector(numbers.numbers(request["q"]))
         p = numbers.vector(numbers.numbers(request["p"]))
+        t = numbers.number(request["t"]) if "t" in request else None
         count = request.get(STEPS, 1) if take_steps else 1
         if isinstance(count, bool) or not isinstance(count, int) or count < 1:
             _reply(output, {"error": f"a request's \"steps\" is {count!r}: expected a whole number, 1 or more"})
@@ -262,7 +271,7 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, evaluations=N
             before = _count(evaluations) if send_evaluations else 0
             x, taken_steps, states = (q, p), 0, []
             while True:  # count steps from (q, p); the states between them stay here
-                result = step(h, *x)
+                result = step(h, *x, t=t + taken_steps * h) if step_takes_time and t is not None else step(h, *x)
                 q_next, p_next = _state(result, dimension, step)
                 if count > 1 and not (numbers.finite(q_next) and numbers.finite(p_next)):
                     q_next, p_next, result = list(x[0]), list(x[1]), x  # the state before it; vivv steps one by one
@@ -285,7 +294,7 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, evaluations=N
                                     "it must count up (the evaluations made so far)")
                 answer[EVALUATIONS] = made
             if send_jacobian and request.get(JACOBIAN) is True:  # vivv asks where it reads one
-                matrix = jacobian(h, q, p)
+                matrix = jacobian(h, q, p, t=t) if jacobian_takes_time and t is not None else jacobian(h, q, p)
                 answer[JACOBIAN] = [_written(row, numbers, jacobian, matrix)
                                     for row in _matrix(matrix, 2 * dimension, jacobian)]
         except BadAnswer as bad:  # what the user's function returned, named with the function
@@ -296,6 +305,16 @@ def serve(step, jacobian=None, *, arithmetic="mpmath", setup=None, evaluations=N
             return 1
         _reply_answer(output, answer)
     return 0
+
+
+def _takes_time(function):
+    """Whether `function` has a parameter named t that a keyword can fill (step(h, q, p, t))."""
+    try:
+        parameter = inspect.signature(function).parameters.get("t")
+    except (TypeError, ValueError):  # a builtin without a signature: it takes no time
+        return False
+    return parameter is not None and parameter.kind in (inspect.Parameter.POSITIONAL_OR_KEYWORD,
+                                                        inspect.Parameter.KEYWORD_ONLY)
 
 
 def _count(evaluations):
