@@ -7,20 +7,23 @@ to a step with a parameter named t; tests/process/CMakeLists.txt, process/kapitz
 L_d(q0, q1) = h L(t + h/2, (q0 + q1)/2, (q1 − q0)/h); from (q, p) at t, q' solves p = −D1 L_d(q, q')
 by Newton, and p' = D2 L_d(q, q').
 
-usage: kapitza_midpoint.py [--time-at-start | --no-time]
+usage: kapitza_midpoint.py [--time-at-start | --no-time] [--float]
 
 --time-at-start evaluates L at the segment's start t where t + h/2 belongs (a planted bug: order 1).
 --no-time steps as if t were always 0, a program that ignores the time vivv sends (order 0 where
-the pivot moves).
+the pivot moves). --float computes in Python floats (a double program: "precision": "double").
 """
+import math
 import os
 import sys
 
-from mpmath import cos, mp, mpf, sin
+import mpmath
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 from vivv_map import Decline, serve  # noqa: E402
 
+in_float = "--float" in sys.argv
+cos, sin = (math.cos, math.sin) if in_float else (mpmath.cos, mpmath.sin)
 at_start = "--time-at-start" in sys.argv
 no_time = "--no-time" in sys.argv
 a = w = g = None
@@ -47,10 +50,10 @@ def momenta(t, q0, q1, h):
 
 
 def step(h, q, p, t=0):
-    t = mpf(0) if no_time else t
+    t = 0 if no_time else t
     q0, p0 = q[0], p[0]
     q1 = q0 + h * (p0 + a * w * sin(w * t) * sin(q0))  # an explicit Euler guess: v = p + A sin q
-    tolerance = mpf(10) ** (-mp.dps)
+    tolerance = sys.float_info.epsilon if in_float else mpmath.mpf(10) ** (-mpmath.mp.dps)
     for _ in range(60):  # Newton: quadratic, a few iterations
         before, _, slope = momenta(t, q0, q1, h)
         correction = (before - p0) / slope
@@ -61,4 +64,4 @@ def step(h, q, p, t=0):
     return [q1], [after]
 
 
-sys.exit(serve(step, setup=setup))
+sys.exit(serve(step, setup=setup, arithmetic="float" if in_float else "mpmath"))
