@@ -164,6 +164,20 @@ void read_formula_system(Reader& system, CaseSpec& spec) {
         continue;
       }
       claim_name(name, system.field("params") + "." + name, "a parameter");
+      // A coefficient that moves with the time ("0.5*cos(2*t)") is not a parameter: say where it goes.
+      const std::string time_name = system.has("time") && system.get("time").is_string()
+                                        ? system.get("time").get<std::string>()
+                                        : std::string("t");
+      if (value.is_string() && !is_numeral_text(value.get<std::string>()) &&
+          value.get<std::string>().size() <= longest_formula) {
+        try {
+          if (formula_uses_name(parse_formula(value.get<std::string>()), time_name))
+            values.fail(name, "uses the time '" + time_name +
+                                  "': a parameter is a number, the same at every t; a coefficient that moves with the "
+                                  "time belongs in the lagrangian — write its formula there in place of '" + name + "'");
+        } catch (const FormulaError&) {
+        }
+      }
       spec.parameters.emplace_back(name, values.number(name));
     }
     values.finish();
@@ -301,6 +315,14 @@ void read_formula_system(Reader& system, CaseSpec& spec) {
     bind_formula_names<long double, V>(scope, definition->coordinates, inputs, false);
     bind_formula_parameters<long double, V>(scope, *definition);
     for (std::size_t i = 0; i < symmetry_texts.size(); ++i) {
+      // A generator that moves with the time is not one discrete-noether measures: say so, not
+      // only that the time's name is unknown there.
+      if (definition->time_dependent && formula_uses_name(definition->symmetry[i], definition->time_name))
+        system.fail(symmetry_fields[i],
+                    "the generator ξ(q) uses the time '" + definition->time_name +
+                        "': discrete-noether measures a symmetry of L at every t whose generator does not move "
+                        "with the time (a rotation of a charge in a field that pulses, docs/case-files.md \"Time\"); "
+                        "its conserved quantity p·ξ(q) is then conserved to rounding by a variational integrator");
       try {
         if (interpret(definition->symmetry[i], scope).is_vector)
           throw FormulaError(0, "expected a number, got a vector");
