@@ -100,7 +100,7 @@ void measure_map_by_probes(const CaseContext<System>& context, const std::vector
     };
     std::vector<Probed> probed;
     for (int k = 0; k < steps; ++k) {
-      scale = scale.cwiseMax(V(Claim::template phase_size<T, any_size>(context, context.system, x[k].q, x[k].w,
+      scale = scale.cwiseMax(V(Claim::template phase_size<T, any_size>(context, context.at_step(h, k), x[k].q, x[k].w,
                                                                          static_cast<std::size_t>(k), x.size() - 1)));
       std::vector<V> vectors;
       for (int i = 0; i < 2 * map_probe_fresh_pairs; ++i) vectors.push_back(draw.next<T>(2 * n));

@@ -117,7 +117,8 @@ struct SymplecticityClaim : Claim<SymplecticityClaim> {
           jacobians.push_back(context.map_at(T(k * h)).jacobian(x[k], h));
           noise.push_back(context.map->last_jacobian_unit() / context.map->jacobian_unit());
           noise_raised_tolerance = noise_raised_tolerance || noise.back() > 1;
-          scale = scale.cwiseMax(phase_size<T, N>(context, context.system, x[k].q, x[k].w, k, x.size() - 1));
+          scale = scale.cwiseMax(phase_size<T, N>(context, context.at_step(h, static_cast<long>(k)), x[k].q, x[k].w, k,
+                                                  x.size() - 1));
         }
         // The noise is measured at the first step and every eighth, the largest so far standing
         // for the steps between; the largest of the whole run stands for every step of it (a step
