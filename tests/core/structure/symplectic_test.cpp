@@ -181,6 +181,38 @@ TYPED_TEST(SymplecticTest, JacobianCheckAllowsForTheRoundingOfTheStepsOutputs) {
   }
 }
 
+// The outputs' rounding enters an entry's allowance as 2·r_i/δ_j: a central difference of two
+// answers, each within r_i of the exact one, errs by at most r_i/δ_j, and the allowance takes
+// twice that (a rounding that drifts with the width is not seen by the changes between widths,
+// so nothing else covers it). Pinned on a linear map y ↦ (J + E)y, whose
+// differences are (J + E) at every width (no truncation, rounding far below E), against J: the
+// entry (0, 0) misses by e = 10⁻⁶. With r_0 = 0.7·e·δ_0 the allowance is 1.4·e and the check
+// holds (with 1·r_0/δ_0 it would fail); with r_0 = 0.4·e·δ_0 it is 0.8·e and the check fails
+// (with 3·r_0/δ_0 it would hold).
+TYPED_TEST(SymplecticTest, JacobianCheckAllowsTwiceTheOutputsRoundingOverTheWidth) {
+  using T = TypeParam;
+  using std::pow;
+  Matrix<T, 2, 2> jacobian;
+  jacobian << T(1), T(1) / 4, T(-1) / 2, T(1);
+  const T e = T(1) / 1000000;
+  Matrix<T, 2, 2> map_matrix = jacobian;
+  map_matrix(0, 0) += e;
+  const Vector<T, 2> x(T(1) / 2, T(1) / 4);
+  const Vector<T, 2> scale = x.cwiseAbs();
+  const T width = pow(epsilon<T>(), T(1) / 3) * x[0];  // δ_0
+  const auto check = [&](const T& share) {
+    const Vector<T, 2> rounding(T(share * e * width), T(0));
+    return compare_with_differences<T, 2>([&](const Vector<T, 2>& y) { return Vector<T, 2>(map_matrix * y); }, x,
+                                          jacobian, scale, epsilon<T>(), &rounding);
+  };
+  const JacobianAgreement<T> wide = check(T(7) / 10);
+  EXPECT_TRUE(wide.holds) << wide.mismatch << " > " << wide.allowed;
+  EXPECT_GT(wide.allowed, T(13) / 10 * e);
+  const JacobianAgreement<T> narrow = check(T(4) / 10);
+  EXPECT_FALSE(narrow.holds) << narrow.mismatch << " <= " << narrow.allowed;
+  EXPECT_LT(narrow.allowed, T(9) / 10 * e);
+}
+
 TYPED_TEST(SymplecticTest, VariationalMapsAreSymplecticToWorkingPrecision) {
   std::mt19937 random(5);
   for (QxQRule kind : {QxQRule::midpoint, QxQRule::trapezoid, QxQRule::left_rectangle}) {
