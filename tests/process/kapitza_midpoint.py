@@ -7,11 +7,13 @@ to a step with a parameter named t; tests/process/CMakeLists.txt, process/kapitz
 L_d(q0, q1) = h L(t + h/2, (q0 + q1)/2, (q1 − q0)/h); from (q, p) at t, q' solves p = −D1 L_d(q, q')
 by Newton, and p' = D2 L_d(q, q').
 
-usage: kapitza_midpoint.py [--time-at-start | --no-time] [--float]
+usage: kapitza_midpoint.py [--time-at-start | --no-time] [--float] [--no-batch]
 
 --time-at-start evaluates L at the segment's start t where t + h/2 belongs (a planted bug: order 1).
 --no-time steps as if t were always 0, a program that ignores the time vivv sends (order 0 where
 the pivot moves). --float computes in Python floats (a double program: "precision": "double").
+--no-batch declines the extensions "steps" and "trajectory": vivv sends one request a step, each
+with its own time.
 """
 import math
 import os
@@ -64,4 +66,4 @@ def step(h, q, p, t=0):
     return [q1], [after]
 
 
-sys.exit(serve(step, setup=setup, arithmetic="float" if in_float else "mpmath"))
+sys.exit(serve(step, setup=setup, arithmetic="float" if in_float else "mpmath", batch="--no-batch" not in sys.argv))
