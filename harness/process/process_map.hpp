@@ -63,9 +63,7 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
         bound_(to_decimal<T>(scale_bound(orbit_size))),
         timed_(depends_on_time(system_)),
         time_(system_time(system_)),
-        process_(start(digits_)) {
-    if (timed_) process_->set_time(to_decimal<T>(time_));
-  }
+        process_(start(digits_)) {}
 
   // For an L that depends on time: the time of the states the next requests start from, sent as
   // their "t" (docs/process-protocol.md), and the time at which vivv converts between w and p — the
@@ -554,7 +552,9 @@ class ProcessMap final : public OneStepMap<typename System::Scalar, System::dime
                                      {"extensions", nlohmann::json::array(
                                           {jacobian_extension, evaluations_extension, steps_extension, trajectory_extension,
                                            pipeline_extension})}};
-    return std::make_unique<MapProcess>(options_, greeting);
+    auto process = std::make_unique<MapProcess>(options_, greeting);
+    if (timed_) process->set_time(to_decimal<T>(time_));  // its requests' "t" from the first on
+    return process;
   }
 
   System system_;

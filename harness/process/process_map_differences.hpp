@@ -88,10 +88,7 @@ typename ProcessMap<System>::Differences ProcessMap<System>::fine_along(const st
                                                                         const std::string& step, const T& h,
                                                                         int count, const Direction& direction,
                                                                         const std::string& epsilon_of_T) const {
-  if (!fine_) {
-    fine_ = start(fine_digits());
-    if (timed_) fine_->set_time(to_decimal<T>(time_));
-  }
+  if (!fine_) fine_ = start(fine_digits());
   // The first Jacobian and every `recheck`-th one are computed again at 10 times the width: a
   // program computing at the digits it was asked for gives the same matrix to about
   // 10^(−(4D+14)/3) (the width's truncation grows 100 times), far below ε of the working

@@ -1,16 +1,18 @@
-// Synthetic sweeps for the order fit's tests (tests/harness/verdicts/order_fit_test.cpp and
-// order_verdict_test.cpp): step sizes, power laws, errors with given pairwise orders, and the
-// checks the verdict tests share.
+// Synthetic sweeps for the order fit's tests (tests/harness/verdicts/order_fit_test.cpp,
+// order_verdict_test.cpp and not_yet_asymptotic_test.cpp): step sizes, power laws, errors with given
+// pairwise orders, the checks the verdict tests share and their fixture.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "harness/verdicts/order_fit.hpp"
+#include "tests/test_scalars.hpp"
 
 namespace vivv::sweeps {
 
@@ -115,5 +117,16 @@ inline void expect_inconclusive_until_refined(const OrderVerdict& verdict, const
   EXPECT_TRUE(contains(verdict.explanation, why)) << verdict.explanation;
   EXPECT_TRUE(contains(verdict.to_decide, "--refine")) << verdict.to_decide;
 }
+
+// The order verdict's tests run in double, quad and MPFR (at 100 digits).
+template <class T>
+class SweepVerdictTest : public ::testing::Test {
+ protected:
+  SweepVerdictTest() {
+    if constexpr (is_mpfr_v<T>) guard_.emplace(100);
+  }
+  std::optional<PrecisionGuard> guard_;
+};
+using VerdictScalars = ::testing::Types<double, quad, mpfr_real>;
 
 }  // namespace vivv::sweeps
